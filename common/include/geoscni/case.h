@@ -1,0 +1,99 @@
+/* The case file (DESIGN.md, "The case file"): YAML read with libyaml into one
+ * struct of resolved parameters. Every key has a named default or is
+ * required; every error names file:line and what is expected. */
+#ifndef GEOSCNI_CASE_H
+#define GEOSCNI_CASE_H
+
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { GSN_PATH_SIZE = 4096, GSN_NAME_SIZE = 64, GSN_MAX_BOUNDARIES = 32 };
+
+/* Defaults of the optional keys. */
+#define GSN_DEFAULT_KERNEL_SUPPORT 1.5    /* a/h, seed paper section 6 */
+#define GSN_DEFAULT_KERNEL_BASIS_ORDER 1  /* linear basis */
+#define GSN_DEFAULT_FACET_POINTS 1        /* facet centroid rule */
+#define GSN_DEFAULT_GAUSS_POINTS 2        /* per direction, per cell */
+#define GSN_DEFAULT_TIME_STEP_SAFETY 0.8  /* fraction of the stable step */
+#define GSN_DEFAULT_FRAMES 100            /* output.every = end / this */
+#define GSN_DEFAULT_MAX_PARTICLES 5000000 /* more needs --force */
+
+enum gsn_integration {
+    GSN_INTEGRATION_SCNI = 0, /* stabilized conforming nodal integration */
+    GSN_INTEGRATION_DNI,      /* direct nodal integration (comparison only) */
+    GSN_INTEGRATION_GAUSS     /* background-cell Gauss (comparison only) */
+};
+
+enum gsn_stabilization {
+    GSN_STABILIZATION_NONE = 0,
+    GSN_STABILIZATION_MSCNI /* sub-cell smoothing, Puso et al. 2008 */
+};
+
+/* Boundary entry: keys are gmsh physical surface names. Components are
+ * x, y, z = 0, 1, 2. */
+struct gsn_boundary {
+    char name[GSN_NAME_SIZE];
+    int line;            /* line of the entry in the case file */
+    int fixed[3];        /* component held at zero displacement */
+    int has_velocity[3]; /* component moved at a prescribed velocity */
+    double velocity[3];  /* m/s, where has_velocity */
+};
+
+struct gsn_material {
+    double density;       /* rho0, kg/m^3 */
+    double bulk_modulus;  /* K, Pa */
+    double shear_modulus; /* mu, Pa */
+    int has_damage;       /* seed eqs. (6)-(7) */
+    double damage_e0;     /* initial damage threshold, - */
+    double damage_ef;     /* final damage threshold, - */
+    int has_plasticity;   /* seed eq. (8) */
+    double dp_alpha;      /* friction coefficient alpha, - */
+    double dp_R;          /* cohesion-like R, Pa */
+    double dp_dilatancy;  /* beta of the potential; = alpha: associated */
+};
+
+struct gsn_case {
+    char path[GSN_PATH_SIZE];     /* the case file as given */
+    char geometry[GSN_PATH_SIZE]; /* resolved against the case file folder */
+    int geometry_line;
+    double particle_spacing; /* m */
+    int facet_points;        /* quadrature points per Voronoi facet */
+    double kernel_support;   /* normalized support a/h */
+    int kernel_basis_order;  /* 1 linear, 2 quadratic */
+    enum gsn_integration integration;
+    int gauss_points; /* per direction, GAUSS only */
+    enum gsn_stabilization stabilization;
+    struct gsn_material material;
+    double gravity[3]; /* m/s^2 */
+    int boundary_count;
+    struct gsn_boundary boundaries[GSN_MAX_BOUNDARIES];
+    double time_end;         /* s */
+    int time_step_auto;      /* step: auto */
+    double time_step;        /* s, when not auto */
+    double time_step_safety; /* fraction of the stable step, auto only */
+    double output_every;     /* s between frames */
+};
+
+/* Reads and checks a case file. On error returns GSN_ERR_INPUT (or
+ * GSN_ERR_IO) with a "path:line: message" in the error chain. */
+int gsn_case_load(const char *path, struct gsn_case *out);
+
+/* Writes the resolved parameters as YAML (every key, defaults included);
+ * the text is stored in every output file. */
+int gsn_case_write_yaml(const struct gsn_case *c, FILE *out);
+
+/* The same as a malloc'ed string; the caller frees it. */
+int gsn_case_to_yaml_string(const struct gsn_case *c, char **text);
+
+/* Index of a boundary entry by surface name, or -1. */
+int gsn_case_find_boundary(const struct gsn_case *c, const char *name);
+
+const char *gsn_integration_name(enum gsn_integration integration);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,65 @@
+/* The model that pre writes to model.h5 and the solver reads: particles,
+ * their nodal domains (clipped Voronoi cells) as facets with quadrature
+ * points, the physical surfaces, and the tetrahedra for visualization.
+ * Arrays are n x columns row-major, as the datasets of schema.h. */
+#ifndef GEOSCNI_MODEL_H
+#define GEOSCNI_MODEL_H
+
+#include "geoscni/case.h"
+#include "geoscni/h5io.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct gsn_model {
+    int particle_count;
+    double *position;             /* particle_count x 3, m */
+    double *volume;               /* particle_count, m^3 */
+    double *centroid;             /* particle_count x 3, m */
+    int *particle_surface_offset; /* particle_count + 1 */
+    int *particle_surface;        /* surface indices, CSR */
+
+    int facet_count;
+    int *facet_owner;        /* facet_count */
+    int *facet_neighbour;    /* facet_count, -1 on the boundary */
+    int *facet_surface;      /* facet_count, -1 if interior or untagged */
+    double *facet_area;      /* facet_count, m^2 */
+    double *facet_normal;    /* facet_count x 3, outward from the owner */
+    int *facet_point_offset; /* facet_count + 1 */
+    double *facet_point;     /* points x 3, m */
+    double *facet_weight;    /* points, m^2 */
+
+    int surface_count;
+    char (*surface_name)[GSN_H5_STRING_SIZE];
+    int *surface_tag;     /* gmsh physical tag */
+    double *surface_area; /* m^2, as gmsh measures it */
+
+    int tetrahedron_count;
+    int *tetrahedra; /* tetrahedron_count x 4 particle indices */
+};
+
+/* Allocates every array for the given sizes (zeroed); offsets are left 0. */
+int gsn_model_allocate(struct gsn_model *m, int particle_count,
+                       int particle_surface_entries, int facet_count,
+                       int facet_point_count, int surface_count,
+                       int tetrahedron_count);
+
+/* Frees every array and zeroes the struct; accepts a zeroed struct. */
+void gsn_model_free(struct gsn_model *m);
+
+/* Writes path atomically (a temporary name renamed when complete) with the
+ * resolved case recorded. */
+int gsn_model_write(const char *path, const struct gsn_model *m,
+                    const struct gsn_case *c);
+
+/* Reads and checks the shape and index ranges of a model file. */
+int gsn_model_read(const char *path, struct gsn_model *m);
+
+/* Index of a surface by name, or -1. */
+int gsn_model_find_surface(const struct gsn_model *m, const char *name);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

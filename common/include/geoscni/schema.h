@@ -1,0 +1,113 @@
+/* The HDF5 schema shared by all stages (DESIGN.md, "model.h5 and
+ * results.h5"): every dataset by name, type, columns, units and description,
+ * defined once here. A file records GSN_SCHEMA_VERSION, its kind, the
+ * resolved case, and the code and library versions as root attributes. */
+#ifndef GEOSCNI_SCHEMA_H
+#define GEOSCNI_SCHEMA_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define GSN_SCHEMA_VERSION 1
+#define GSN_FILE_KIND_MODEL "model"
+#define GSN_FILE_KIND_RESULTS "results"
+
+/* Root attribute names. */
+#define GSN_ATTR_SCHEMA_VERSION "schema_version"
+#define GSN_ATTR_FILE_KIND "file_kind"
+#define GSN_ATTR_CASE "case_resolved_yaml"
+#define GSN_ATTR_CODE_VERSION "code_version"
+#define GSN_ATTR_LIBRARY_VERSIONS "library_versions"
+#define GSN_ATTR_UNITS "units"
+#define GSN_ATTR_DESCRIPTION "description"
+
+enum gsn_h5_type { GSN_H5_DOUBLE, GSN_H5_INT, GSN_H5_STRING };
+
+/* One dataset: rows x columns (columns 1 means a 1D dataset). */
+struct gsn_dataset_info {
+    const char *path;
+    enum gsn_h5_type type;
+    int columns;
+    const char *units;
+    const char *description;
+};
+
+/* model.h5, written by pre. Facets are stored once each: normal outward from
+ * owner; an interior facet is used by its neighbour with the opposite normal
+ * at the same quadrature points. Indices are 0-based.
+ * X(id, path, type, columns, units, description) */
+#define GSN_MODEL_DATASETS(X)                                                  \
+    X(GSN_MODEL_POSITION, "particles/position", GSN_H5_DOUBLE, 3, "m",         \
+      "reference position X_I of each particle")                               \
+    X(GSN_MODEL_VOLUME, "particles/volume", GSN_H5_DOUBLE, 1, "m^3",           \
+      "volume V_L of each nodal domain (Voronoi cell clipped to the body)")    \
+    X(GSN_MODEL_CENTROID, "particles/centroid", GSN_H5_DOUBLE, 3, "m",         \
+      "centroid of each nodal domain")                                         \
+    X(GSN_MODEL_PARTICLE_SURFACE_OFFSET, "particles/surface_offset",           \
+      GSN_H5_INT, 1, "1",                                                      \
+      "CSR offsets (particle count + 1) into particles/surface")               \
+    X(GSN_MODEL_PARTICLE_SURFACE, "particles/surface", GSN_H5_INT, 1, "1",     \
+      "index into surfaces/ of every physical surface a particle lies on")     \
+    X(GSN_MODEL_FACET_OWNER, "facets/owner", GSN_H5_INT, 1, "1",               \
+      "particle whose nodal domain the facet bounds, normal outward from it")  \
+    X(GSN_MODEL_FACET_NEIGHBOUR, "facets/neighbour", GSN_H5_INT, 1, "1",       \
+      "particle on the other side of the facet, -1 on the body boundary")      \
+    X(GSN_MODEL_FACET_SURFACE, "facets/surface", GSN_H5_INT, 1, "1",           \
+      "index into surfaces/ of a boundary facet, -1 if none or interior")      \
+    X(GSN_MODEL_FACET_AREA, "facets/area", GSN_H5_DOUBLE, 1, "m^2",            \
+      "area of the facet")                                                     \
+    X(GSN_MODEL_FACET_NORMAL, "facets/normal", GSN_H5_DOUBLE, 3, "1",          \
+      "unit normal, outward from the owner's domain")                          \
+    X(GSN_MODEL_FACET_POINT_OFFSET, "facets/point_offset", GSN_H5_INT, 1, "1", \
+      "CSR offsets (facet count + 1) into facets/point and facets/weight")     \
+    X(GSN_MODEL_FACET_POINT, "facets/point", GSN_H5_DOUBLE, 3, "m",            \
+      "quadrature points of the facets")                                       \
+    X(GSN_MODEL_FACET_WEIGHT, "facets/weight", GSN_H5_DOUBLE, 1, "m^2",        \
+      "quadrature weights; they add up to the facet's area")                   \
+    X(GSN_MODEL_SURFACE_NAME, "surfaces/name", GSN_H5_STRING, 1, "1",          \
+      "gmsh physical surface names")                                           \
+    X(GSN_MODEL_SURFACE_TAG, "surfaces/tag", GSN_H5_INT, 1, "1",               \
+      "gmsh physical group tag of each surface")                               \
+    X(GSN_MODEL_SURFACE_AREA, "surfaces/area", GSN_H5_DOUBLE, 1, "m^2",        \
+      "area of each physical surface as gmsh measures it")                     \
+    X(GSN_MODEL_TETRAHEDRA, "mesh/tetrahedra", GSN_H5_INT, 4, "1",             \
+      "tetrahedra of the gmsh mesh as particle indices, for visualization")
+
+/* One frame of results.h5: a group GSN_FRAME_GROUP_FORMAT with attributes
+ * "time" (s) and "step", holding these datasets (one row per particle). */
+#define GSN_FRAME_FIELDS(X)                                                    \
+    X(GSN_FRAME_DISPLACEMENT, "displacement", GSN_H5_DOUBLE, 3, "m",           \
+      "displacement u(X_J) = sum_I Psi_I(X_J) d_I at the particles")           \
+    X(GSN_FRAME_VELOCITY, "velocity", GSN_H5_DOUBLE, 3, "m/s",                 \
+      "velocity at the particles")                                             \
+    X(GSN_FRAME_STRESS, "stress", GSN_H5_DOUBLE, 6, "Pa",                      \
+      "Cauchy stress, tension positive, Voigt xx yy zz xy yz xz")              \
+    X(GSN_FRAME_DAMAGE, "damage", GSN_H5_DOUBLE, 1, "1",                       \
+      "damage zeta of seed eq. (7), 0 intact to 1 failed")                     \
+    X(GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN, "equivalent_plastic_strain",        \
+      GSN_H5_DOUBLE, 1, "1", "accumulated equivalent plastic strain")          \
+    X(GSN_FRAME_EQUIVALENT_STRESS, "equivalent_stress", GSN_H5_DOUBLE, 1,      \
+      "Pa", "equivalent stress sqrt(3/2) ||dev sigma||")
+
+#define GSN_FRAMES_GROUP "frames"
+#define GSN_FRAME_GROUP_FORMAT "frames/%06d"
+#define GSN_CHECKPOINT_GROUP "checkpoint"
+
+#define GSN_DATASET_ENUM(id, path, type, columns, units, description) id,
+enum gsn_model_dataset {
+    GSN_MODEL_DATASETS(GSN_DATASET_ENUM) GSN_MODEL_DATASET_COUNT
+};
+enum gsn_frame_field {
+    GSN_FRAME_FIELDS(GSN_DATASET_ENUM) GSN_FRAME_FIELD_COUNT
+};
+#undef GSN_DATASET_ENUM
+
+extern const struct gsn_dataset_info
+    gsn_model_datasets[GSN_MODEL_DATASET_COUNT];
+extern const struct gsn_dataset_info gsn_frame_fields[GSN_FRAME_FIELD_COUNT];
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,79 @@
+/* Tensor conventions used by every stage (STYLE.md rule 8).
+ *
+ * - SI units throughout: m, s, kg, Pa, N, J.
+ * - Stress is Cauchy stress, tension positive. The Drucker-Prager yield
+ *   function of seed paper eq. (8) is read with a compression-positive trace,
+ *   i.e. ||dev s|| + alpha tr s - R <= 0 in tension-positive stress
+ *   (DESIGN.md, "Sign convention").
+ * - Symmetric tensors are stored as 6 doubles in the Voigt order
+ *   xx yy zz xy yz xz (the order of the output arrays). Stress components
+ *   are tensor components; strain-like arrays (GSN_VOIGT_*) also store
+ *   tensor shear components (eps_xy, not gamma_xy = 2 eps_xy) unless a
+ *   name says "engineering".
+ * - Full 3x3 tensors are row-major: A[3*i + j] = A_ij. A gradient
+ *   G_ij = d u_i / d x_j.
+ * - Vectors of particles are structure-of-arrays or n x 3 row-major
+ *   (x_I = position[3*I + k]), as each dataset says. */
+#ifndef GEOSCNI_TENSOR_H
+#define GEOSCNI_TENSOR_H
+
+#include <math.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum gsn_voigt {
+    GSN_VOIGT_XX = 0,
+    GSN_VOIGT_YY = 1,
+    GSN_VOIGT_ZZ = 2,
+    GSN_VOIGT_XY = 3,
+    GSN_VOIGT_YZ = 4,
+    GSN_VOIGT_XZ = 5,
+    GSN_VOIGT_SIZE = 6
+};
+
+/* Row and column of each Voigt entry in a 3x3 tensor. */
+static const int gsn_voigt_row[GSN_VOIGT_SIZE] = {0, 1, 2, 0, 1, 0};
+static const int gsn_voigt_col[GSN_VOIGT_SIZE] = {0, 1, 2, 1, 2, 2};
+
+/* Voigt entry of tensor component (i, j). */
+static inline int gsn_voigt_index(int i, int j)
+{
+    static const int table[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
+    return table[i][j];
+}
+
+/* Full 3x3 (row-major) from Voigt, and symmetric part of a 3x3 to Voigt. */
+static inline void gsn_voigt_to_matrix(const double v[6], double m[9])
+{
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            m[3 * i + j] = v[gsn_voigt_index(i, j)];
+}
+
+static inline void gsn_matrix_sym_to_voigt(const double m[9], double v[6])
+{
+    for (int a = 0; a < GSN_VOIGT_SIZE; ++a) {
+        const int i = gsn_voigt_row[a], j = gsn_voigt_col[a];
+        v[a] = 0.5 * (m[3 * i + j] + m[3 * j + i]);
+    }
+}
+
+/* Trace and Frobenius norm of a symmetric tensor in Voigt storage. */
+static inline double gsn_voigt_trace(const double v[6])
+{
+    return v[0] + v[1] + v[2];
+}
+
+static inline double gsn_voigt_norm(const double v[6])
+{
+    double s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    s += 2.0 * (v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
+    return sqrt(s);
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif

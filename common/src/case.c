@@ -1,0 +1,860 @@
+/* Case file reader: libyaml's document API gives every node its line, so each
+ * message can say file:line. Keys are checked against a list per mapping;
+ * an unknown key gets a did-you-mean from the same list. */
+#include "geoscni/case.h"
+#include "geoscni/error.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <yaml.h>
+
+struct reader {
+    const char *path;
+    yaml_document_t document;
+};
+
+static const char *const component_names[3] = {"x", "y", "z"};
+
+static int node_line(const yaml_node_t *node)
+{
+    return (int)node->start_mark.line + 1;
+}
+
+static yaml_node_t *node_get(struct reader *r, int index)
+{
+    return yaml_document_get_node(&r->document, index);
+}
+
+static const char *scalar_text(const yaml_node_t *node)
+{
+    return (const char *)node->data.scalar.value;
+}
+
+static int is_null_scalar(const yaml_node_t *node)
+{
+    if (node->type != YAML_SCALAR_NODE)
+        return 0;
+    if (node->data.scalar.style != YAML_PLAIN_SCALAR_STYLE)
+        return 0;
+    const char *t = scalar_text(node);
+    return t[0] == '\0' || strcmp(t, "~") == 0 || strcmp(t, "null") == 0 ||
+           strcmp(t, "Null") == 0 || strcmp(t, "NULL") == 0;
+}
+
+static const char *node_kind(const yaml_node_t *node)
+{
+    switch (node->type) {
+    case YAML_SCALAR_NODE:
+        return is_null_scalar(node) ? "nothing (null)" : "a scalar";
+    case YAML_SEQUENCE_NODE:
+        return "a list";
+    case YAML_MAPPING_NODE:
+        return "a mapping";
+    default:
+        return "nothing";
+    }
+}
+
+/* Levenshtein distance of two short keys (capped at 63 characters). */
+static int edit_distance(const char *a, const char *b)
+{
+    enum { N = 64 };
+    int la = (int)strlen(a), lb = (int)strlen(b);
+    if (la >= N || lb >= N)
+        return N;
+    int previous[N], current[N];
+    for (int j = 0; j <= lb; ++j)
+        previous[j] = j;
+    for (int i = 1; i <= la; ++i) {
+        current[0] = i;
+        for (int j = 1; j <= lb; ++j) {
+            int cost = a[i - 1] == b[j - 1] ? 0 : 1;
+            int best = previous[j - 1] + cost;
+            if (previous[j] + 1 < best)
+                best = previous[j] + 1;
+            if (current[j - 1] + 1 < best)
+                best = current[j - 1] + 1;
+            current[j] = best;
+        }
+        memcpy(previous, current, sizeof(int) * (size_t)(lb + 1));
+    }
+    return previous[lb];
+}
+
+static const char *closest_key(const char *key, const char *const allowed[])
+{
+    const char *best = NULL;
+    int best_distance = 1 << 30;
+    for (int i = 0; allowed[i]; ++i) {
+        int d = edit_distance(key, allowed[i]);
+        if (d < best_distance) {
+            best_distance = d;
+            best = allowed[i];
+        }
+    }
+    int limit = (int)strlen(key) / 3 > 2 ? (int)strlen(key) / 3 : 2;
+    return best_distance <= limit ? best : NULL;
+}
+
+static void join_keys(const char *const allowed[], char *out, size_t size)
+{
+    out[0] = '\0';
+    for (int i = 0; allowed[i]; ++i) {
+        size_t used = strlen(out);
+        snprintf(out + used, size - used, "%s%s", i ? ", " : "", allowed[i]);
+    }
+}
+
+/* The context name of a mapping for messages: "" means the top level. */
+static const char *context_name(const char *context)
+{
+    return context[0] ? context : "the top level";
+}
+
+static int expect_mapping(struct reader *r, const yaml_node_t *node,
+                          const char *context)
+{
+    GSN_CHECK(node->type == YAML_MAPPING_NODE, GSN_ERR_INPUT,
+              "%s:%d: '%s' must be a mapping of keys, got %s", r->path,
+              node_line(node), context_name(context), node_kind(node));
+    return GSN_OK;
+}
+
+/* Every key of a mapping must be a plain scalar, unique, and in allowed. */
+static int check_keys(struct reader *r, const yaml_node_t *mapping,
+                      const char *const allowed[], const char *context)
+{
+    GSN_CALL(expect_mapping(r, mapping, context));
+    for (yaml_node_pair_t *p = mapping->data.mapping.pairs.start;
+         p < mapping->data.mapping.pairs.top; ++p) {
+        yaml_node_t *key = node_get(r, p->key);
+        GSN_CHECK(key->type == YAML_SCALAR_NODE, GSN_ERR_INPUT,
+                  "%s:%d: a key in %s must be a plain name, got %s", r->path,
+                  node_line(key), context_name(context), node_kind(key));
+        const char *name = scalar_text(key);
+        for (yaml_node_pair_t *q = mapping->data.mapping.pairs.start; q < p;
+             ++q) {
+            yaml_node_t *earlier = node_get(r, q->key);
+            GSN_CHECK(strcmp(scalar_text(earlier), name) != 0, GSN_ERR_INPUT,
+                      "%s:%d: key '%s' appears twice in %s (first at line "
+                      "%d); keep one",
+                      r->path, node_line(key), name, context_name(context),
+                      node_line(earlier));
+        }
+        if (!allowed)
+            continue;
+        int known = 0;
+        for (int i = 0; allowed[i] && !known; ++i)
+            known = strcmp(allowed[i], name) == 0;
+        if (!known) {
+            char list[512];
+            join_keys(allowed, list, sizeof list);
+            const char *guess = closest_key(name, allowed);
+            if (guess)
+                return gsn_error_raise(
+                    GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
+                    "%s:%d: unknown key '%s' in %s; did you mean '%s'? "
+                    "(expected one of: %s)",
+                    r->path, node_line(key), name, context_name(context), guess,
+                    list);
+            return gsn_error_raise(GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
+                                   "%s:%d: unknown key '%s' in %s (expected "
+                                   "one of: %s)",
+                                   r->path, node_line(key), name,
+                                   context_name(context), list);
+        }
+    }
+    return GSN_OK;
+}
+
+static yaml_node_t *mapping_find(struct reader *r, const yaml_node_t *mapping,
+                                 const char *key)
+{
+    for (yaml_node_pair_t *p = mapping->data.mapping.pairs.start;
+         p < mapping->data.mapping.pairs.top; ++p) {
+        yaml_node_t *k = node_get(r, p->key);
+        if (k->type == YAML_SCALAR_NODE && strcmp(scalar_text(k), key) == 0)
+            return node_get(r, p->value);
+    }
+    return NULL;
+}
+
+static void key_path(char *out, size_t size, const char *context,
+                     const char *key)
+{
+    if (context[0])
+        snprintf(out, size, "%s.%s", context, key);
+    else
+        snprintf(out, size, "%s", key);
+}
+
+static int require_key(struct reader *r, const yaml_node_t *mapping,
+                       const char *context, const char *key,
+                       const char *expected, yaml_node_t **value)
+{
+    *value = mapping_find(r, mapping, key);
+    char path[128];
+    key_path(path, sizeof path, context, key);
+    GSN_CHECK(*value != NULL, GSN_ERR_INPUT,
+              "%s:%d: missing required key '%s' in %s; expected %s", r->path,
+              node_line(mapping), key, context_name(context), expected);
+    return GSN_OK;
+}
+
+static int parse_number(struct reader *r, const yaml_node_t *node,
+                        const char *name, double *value)
+{
+    int ok = node->type == YAML_SCALAR_NODE &&
+             node->data.scalar.style == YAML_PLAIN_SCALAR_STYLE &&
+             !is_null_scalar(node);
+    if (ok) {
+        const char *text = scalar_text(node);
+        char *end = NULL;
+        errno = 0;
+        *value = strtod(text, &end);
+        ok = end != text && *end == '\0' && errno == 0 && isfinite(*value);
+    }
+    if (!ok && node->type == YAML_SCALAR_NODE && !is_null_scalar(node))
+        return gsn_error_raise(GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
+                               "%s:%d: '%s' must be a number, got '%s'",
+                               r->path, node_line(node), name,
+                               scalar_text(node));
+    GSN_CHECK(ok, GSN_ERR_INPUT, "%s:%d: '%s' must be a number, got %s",
+              r->path, node_line(node), name, node_kind(node));
+    return GSN_OK;
+}
+
+static int parse_integer(struct reader *r, const yaml_node_t *node,
+                         const char *name, int *value)
+{
+    double number = 0.0;
+    GSN_CALL(parse_number(r, node, name, &number));
+    GSN_CHECK(number == floor(number) && fabs(number) < 1e9, GSN_ERR_INPUT,
+              "%s:%d: '%s' must be a whole number, got '%s'", r->path,
+              node_line(node), name, scalar_text(node));
+    *value = (int)number;
+    return GSN_OK;
+}
+
+static int parse_word(struct reader *r, const yaml_node_t *node,
+                      const char *name, const char *const words[], int *index)
+{
+    char list[256];
+    join_keys(words, list, sizeof list);
+    GSN_CHECK(node->type == YAML_SCALAR_NODE && !is_null_scalar(node),
+              GSN_ERR_INPUT, "%s:%d: '%s' must be one of %s, got %s", r->path,
+              node_line(node), name, list, node_kind(node));
+    for (int i = 0; words[i]; ++i) {
+        if (strcmp(words[i], scalar_text(node)) == 0) {
+            *index = i;
+            return GSN_OK;
+        }
+    }
+    const char *guess = closest_key(scalar_text(node), words);
+    if (guess)
+        return gsn_error_raise(GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
+                               "%s:%d: '%s' must be one of %s, got '%s'; did "
+                               "you mean '%s'?",
+                               r->path, node_line(node), name, list,
+                               scalar_text(node), guess);
+    return gsn_error_raise(GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
+                           "%s:%d: '%s' must be one of %s, got '%s'", r->path,
+                           node_line(node), name, list, scalar_text(node));
+}
+
+/* Reads an optional number key; leaves *value (the default) if absent. */
+static int read_number(struct reader *r, const yaml_node_t *mapping,
+                       const char *context, const char *key, double *value,
+                       int *line)
+{
+    yaml_node_t *node = mapping_find(r, mapping, key);
+    if (!node)
+        return GSN_OK;
+    char path[128];
+    key_path(path, sizeof path, context, key);
+    GSN_CALL(parse_number(r, node, path, value));
+    if (line)
+        *line = node_line(node);
+    return GSN_OK;
+}
+
+static int read_required_number(struct reader *r, const yaml_node_t *mapping,
+                                const char *context, const char *key,
+                                const char *expected, double *value, int *line)
+{
+    yaml_node_t *node = NULL;
+    GSN_CALL(require_key(r, mapping, context, key, expected, &node));
+    char path[128];
+    key_path(path, sizeof path, context, key);
+    GSN_CALL(parse_number(r, node, path, value));
+    *line = node_line(node);
+    return GSN_OK;
+}
+
+/* value must satisfy value > bound (strict) or value >= bound. */
+static int check_lower(struct reader *r, int line, const char *name,
+                       double value, double bound, int strict,
+                       const char *units)
+{
+    int ok = strict ? value > bound : value >= bound;
+    GSN_CHECK(ok, GSN_ERR_INPUT, "%s:%d: '%s' must be %s %g%s%s, got %g",
+              r->path, line, name, strict ? ">" : ">=", bound,
+              units[0] ? " " : "", units, value);
+    return GSN_OK;
+}
+
+static int read_positive(struct reader *r, const yaml_node_t *mapping,
+                         const char *context, const char *key,
+                         const char *units, int required, double *value)
+{
+    int line = node_line(mapping);
+    char path[128];
+    key_path(path, sizeof path, context, key);
+    if (required) {
+        char expected[96];
+        snprintf(expected, sizeof expected, "a positive number%s%s",
+                 units[0] ? " in " : "", units);
+        GSN_CALL(read_required_number(r, mapping, context, key, expected, value,
+                                      &line));
+    } else {
+        if (!mapping_find(r, mapping, key))
+            return GSN_OK;
+        GSN_CALL(read_number(r, mapping, context, key, value, &line));
+    }
+    GSN_CALL(check_lower(r, line, path, *value, 0.0, 1, units));
+    return GSN_OK;
+}
+
+static int read_geometry(struct reader *r, const yaml_node_t *root,
+                         struct gsn_case *c)
+{
+    yaml_node_t *node = NULL;
+    GSN_CALL(require_key(r, root, "", "geometry",
+                         "the path of a gmsh geometry (.geo, .brep, .step)",
+                         &node));
+    c->geometry_line = node_line(node);
+    GSN_CHECK(node->type == YAML_SCALAR_NODE && !is_null_scalar(node),
+              GSN_ERR_INPUT,
+              "%s:%d: 'geometry' must be the path of a gmsh file, got %s",
+              r->path, node_line(node), node_kind(node));
+    const char *name = scalar_text(node);
+    if (name[0] == '/') {
+        snprintf(c->geometry, sizeof c->geometry, "%s", name);
+    } else {
+        const char *slash = strrchr(r->path, '/');
+        int folder = slash ? (int)(slash - r->path) + 1 : 0;
+        int n = snprintf(c->geometry, sizeof c->geometry, "%.*s%s", folder,
+                         r->path, name);
+        GSN_CHECK(n < (int)sizeof c->geometry, GSN_ERR_INPUT,
+                  "%s:%d: geometry path is too long", r->path, node_line(node));
+    }
+    GSN_CHECK(access(c->geometry, R_OK) == 0, GSN_ERR_INPUT,
+              "%s:%d: geometry file '%s' not found or not readable (looked "
+              "for '%s'; the path is relative to the case file's folder)",
+              r->path, node_line(node), name, c->geometry);
+    return GSN_OK;
+}
+
+static int read_particles(struct reader *r, const yaml_node_t *root,
+                          struct gsn_case *c)
+{
+    static const char *const keys[] = {"spacing", "facet_points", NULL};
+    yaml_node_t *node = NULL;
+    GSN_CALL(require_key(r, root, "", "particles",
+                         "a mapping with 'spacing' (m)", &node));
+    GSN_CALL(check_keys(r, node, keys, "particles"));
+    GSN_CALL(read_positive(r, node, "particles", "spacing", "m", 1,
+                           &c->particle_spacing));
+    yaml_node_t *points = mapping_find(r, node, "facet_points");
+    if (points) {
+        GSN_CALL(parse_integer(r, points, "particles.facet_points",
+                               &c->facet_points));
+        GSN_CHECK(c->facet_points == 1 || c->facet_points == 3, GSN_ERR_INPUT,
+                  "%s:%d: 'particles.facet_points' must be 1 (facet centroid) "
+                  "or 3 (three points per facet triangle), got %d",
+                  r->path, node_line(points), c->facet_points);
+    }
+    return GSN_OK;
+}
+
+static int read_kernel(struct reader *r, const yaml_node_t *root,
+                       struct gsn_case *c)
+{
+    static const char *const keys[] = {"support", "basis", NULL};
+    static const char *const bases[] = {"linear", "quadratic", NULL};
+    yaml_node_t *node = mapping_find(r, root, "kernel");
+    if (!node)
+        return GSN_OK;
+    GSN_CALL(check_keys(r, node, keys, "kernel"));
+    int line = node_line(node);
+    GSN_CALL(
+        read_number(r, node, "kernel", "support", &c->kernel_support, &line));
+    GSN_CALL(check_lower(r, line, "kernel.support", c->kernel_support, 1.0, 1,
+                         "(a/h; 1.5 is the paper's)"));
+    yaml_node_t *basis = mapping_find(r, node, "basis");
+    if (basis) {
+        int index = 0;
+        GSN_CALL(parse_word(r, basis, "kernel.basis", bases, &index));
+        c->kernel_basis_order = index + 1;
+    }
+    return GSN_OK;
+}
+
+static int read_integration(struct reader *r, const yaml_node_t *root,
+                            struct gsn_case *c)
+{
+    static const char *const methods[] = {"scni", "dni", "gauss", NULL};
+    static const char *const stabilizations[] = {"none", "mscni", NULL};
+    static const char *const keys[] = {"method", "points", "stabilization",
+                                       NULL};
+    yaml_node_t *node = mapping_find(r, root, "integration");
+    if (!node)
+        return GSN_OK;
+    int index = 0;
+    if (node->type == YAML_SCALAR_NODE) {
+        GSN_CALL(parse_word(r, node, "integration", methods, &index));
+        c->integration = (enum gsn_integration)index;
+        return GSN_OK;
+    }
+    GSN_CALL(check_keys(r, node, keys, "integration"));
+    yaml_node_t *method = NULL;
+    GSN_CALL(require_key(r, node, "integration", "method",
+                         "one of scni, dni, gauss", &method));
+    GSN_CALL(parse_word(r, method, "integration.method", methods, &index));
+    c->integration = (enum gsn_integration)index;
+    yaml_node_t *points = mapping_find(r, node, "points");
+    if (points) {
+        GSN_CALL(
+            parse_integer(r, points, "integration.points", &c->gauss_points));
+        GSN_CHECK(c->gauss_points >= 1 && c->gauss_points <= 6, GSN_ERR_INPUT,
+                  "%s:%d: 'integration.points' (Gauss points per direction) "
+                  "must be 1 to 6, got %d",
+                  r->path, node_line(points), c->gauss_points);
+        GSN_CHECK(c->integration == GSN_INTEGRATION_GAUSS, GSN_ERR_INPUT,
+                  "%s:%d: 'integration.points' applies to method gauss only",
+                  r->path, node_line(points));
+    }
+    yaml_node_t *stabilization = mapping_find(r, node, "stabilization");
+    if (stabilization) {
+        GSN_CALL(parse_word(r, stabilization, "integration.stabilization",
+                            stabilizations, &index));
+        c->stabilization = (enum gsn_stabilization)index;
+    }
+    return GSN_OK;
+}
+
+static int read_material(struct reader *r, const yaml_node_t *root,
+                         struct gsn_case *c)
+{
+    static const char *const keys[] = {"density",        "bulk_modulus",
+                                       "shear_modulus",  "damage",
+                                       "drucker_prager", NULL};
+    static const char *const damage_keys[] = {"e0", "ef", NULL};
+    static const char *const dp_keys[] = {"alpha", "R", "dilatancy", NULL};
+    struct gsn_material *m = &c->material;
+    yaml_node_t *node = NULL;
+    GSN_CALL(require_key(r, root, "", "material",
+                         "a mapping with density, bulk_modulus and "
+                         "shear_modulus",
+                         &node));
+    GSN_CALL(check_keys(r, node, keys, "material"));
+    GSN_CALL(read_positive(r, node, "material", "density", "kg/m^3", 1,
+                           &m->density));
+    GSN_CALL(read_positive(r, node, "material", "bulk_modulus", "Pa", 1,
+                           &m->bulk_modulus));
+    GSN_CALL(read_positive(r, node, "material", "shear_modulus", "Pa", 1,
+                           &m->shear_modulus));
+
+    yaml_node_t *damage = mapping_find(r, node, "damage");
+    if (damage) {
+        GSN_CALL(check_keys(r, damage, damage_keys, "material.damage"));
+        int line_e0 = 0, line_ef = 0;
+        GSN_CALL(read_required_number(r, damage, "material.damage", "e0",
+                                      "the initial damage threshold (> 0)",
+                                      &m->damage_e0, &line_e0));
+        GSN_CALL(read_required_number(r, damage, "material.damage", "ef",
+                                      "the final damage threshold (> e0)",
+                                      &m->damage_ef, &line_ef));
+        GSN_CALL(check_lower(r, line_e0, "material.damage.e0", m->damage_e0,
+                             0.0, 1, ""));
+        GSN_CHECK(m->damage_e0 < m->damage_ef, GSN_ERR_INPUT,
+                  "%s:%d: 'material.damage.e0' (%g) must be less than "
+                  "'material.damage.ef' (%g): damage grows from e0 to ef",
+                  r->path, line_e0, m->damage_e0, m->damage_ef);
+        m->has_damage = 1;
+    }
+
+    yaml_node_t *dp = mapping_find(r, node, "drucker_prager");
+    if (dp) {
+        GSN_CALL(check_keys(r, dp, dp_keys, "material.drucker_prager"));
+        int line_alpha = 0, line_R = 0;
+        GSN_CALL(read_required_number(r, dp, "material.drucker_prager", "alpha",
+                                      "the friction coefficient (>= 0)",
+                                      &m->dp_alpha, &line_alpha));
+        GSN_CALL(read_required_number(r, dp, "material.drucker_prager", "R",
+                                      "the cohesion-like strength in Pa (>= 0)",
+                                      &m->dp_R, &line_R));
+        GSN_CALL(check_lower(r, line_alpha, "material.drucker_prager.alpha",
+                             m->dp_alpha, 0.0, 0, ""));
+        GSN_CALL(check_lower(r, line_R, "material.drucker_prager.R", m->dp_R,
+                             0.0, 0, "Pa"));
+        m->dp_dilatancy = m->dp_alpha; /* associated flow by default */
+        int line_beta = line_alpha;
+        GSN_CALL(read_number(r, dp, "material.drucker_prager", "dilatancy",
+                             &m->dp_dilatancy, &line_beta));
+        GSN_CALL(check_lower(r, line_beta, "material.drucker_prager.dilatancy",
+                             m->dp_dilatancy, 0.0, 0, ""));
+        m->has_plasticity = 1;
+    }
+    return GSN_OK;
+}
+
+static int read_vector3(struct reader *r, const yaml_node_t *node,
+                        const char *name, int allow_null, int present[3],
+                        double value[3])
+{
+    int count = node->type == YAML_SEQUENCE_NODE
+                    ? (int)(node->data.sequence.items.top -
+                            node->data.sequence.items.start)
+                    : -1;
+    GSN_CHECK(count == 3, GSN_ERR_INPUT,
+              "%s:%d: '%s' must be a list of 3 %s [x, y, z], got %s", r->path,
+              node_line(node), name, allow_null ? "numbers or null" : "numbers",
+              count < 0 ? node_kind(node) : "a list of another length");
+    for (int k = 0; k < 3; ++k) {
+        yaml_node_t *item = node_get(r, node->data.sequence.items.start[k]);
+        char item_name[128];
+        snprintf(item_name, sizeof item_name, "%s[%d]", name, k);
+        if (allow_null && is_null_scalar(item)) {
+            present[k] = 0;
+            continue;
+        }
+        GSN_CALL(parse_number(r, item, item_name, &value[k]));
+        present[k] = 1;
+    }
+    return GSN_OK;
+}
+
+static int read_boundary_entry(struct reader *r, const yaml_node_t *key,
+                               const yaml_node_t *node, struct gsn_boundary *b)
+{
+    static const char *const keys[] = {"fix", "velocity", NULL};
+    static const char *const components[] = {"x", "y", "z", NULL};
+    snprintf(b->name, sizeof b->name, "%s", scalar_text(key));
+    GSN_CHECK(strlen(scalar_text(key)) < GSN_NAME_SIZE, GSN_ERR_INPUT,
+              "%s:%d: surface name '%s' is longer than %d characters", r->path,
+              node_line(key), scalar_text(key), GSN_NAME_SIZE - 1);
+    b->line = node_line(key);
+    char context[GSN_NAME_SIZE + 16];
+    snprintf(context, sizeof context, "boundary.%s", b->name);
+    GSN_CALL(check_keys(r, node, keys, context));
+
+    yaml_node_t *fix = mapping_find(r, node, "fix");
+    if (fix) {
+        char name[GSN_NAME_SIZE + 32];
+        snprintf(name, sizeof name, "%s.fix", context);
+        GSN_CHECK(fix->type == YAML_SEQUENCE_NODE, GSN_ERR_INPUT,
+                  "%s:%d: '%s' must be a list of components such as [x, y, "
+                  "z], got %s",
+                  r->path, node_line(fix), name, node_kind(fix));
+        for (yaml_node_item_t *i = fix->data.sequence.items.start;
+             i < fix->data.sequence.items.top; ++i) {
+            int k = 0;
+            GSN_CALL(parse_word(r, node_get(r, *i), name, components, &k));
+            b->fixed[k] = 1;
+        }
+    }
+    yaml_node_t *velocity = mapping_find(r, node, "velocity");
+    if (velocity) {
+        char name[GSN_NAME_SIZE + 32];
+        snprintf(name, sizeof name, "%s.velocity", context);
+        GSN_CALL(
+            read_vector3(r, velocity, name, 1, b->has_velocity, b->velocity));
+        for (int k = 0; k < 3; ++k)
+            GSN_CHECK(!(b->has_velocity[k] && b->fixed[k]), GSN_ERR_INPUT,
+                      "%s:%d: component %s of '%s' is both fixed and given a "
+                      "velocity; use null for it in 'velocity' or drop it "
+                      "from 'fix'",
+                      r->path, node_line(velocity), component_names[k],
+                      context);
+    }
+    return GSN_OK;
+}
+
+static int read_boundary(struct reader *r, const yaml_node_t *root,
+                         struct gsn_case *c)
+{
+    yaml_node_t *node = mapping_find(r, root, "boundary");
+    if (!node)
+        return GSN_OK;
+    GSN_CALL(check_keys(r, node, NULL, "boundary"));
+    for (yaml_node_pair_t *p = node->data.mapping.pairs.start;
+         p < node->data.mapping.pairs.top; ++p) {
+        GSN_CHECK(c->boundary_count < GSN_MAX_BOUNDARIES, GSN_ERR_INPUT,
+                  "%s:%d: more than %d boundary entries", r->path,
+                  node_line(node_get(r, p->key)), GSN_MAX_BOUNDARIES);
+        GSN_CALL(read_boundary_entry(r, node_get(r, p->key),
+                                     node_get(r, p->value),
+                                     &c->boundaries[c->boundary_count]));
+        c->boundary_count++;
+    }
+    return GSN_OK;
+}
+
+static int read_time(struct reader *r, const yaml_node_t *root,
+                     struct gsn_case *c)
+{
+    static const char *const keys[] = {"end", "step", "safety", NULL};
+    yaml_node_t *node = NULL;
+    GSN_CALL(require_key(r, root, "", "time",
+                         "a mapping with 'end' (s) and 'step' (s or auto)",
+                         &node));
+    GSN_CALL(check_keys(r, node, keys, "time"));
+    GSN_CALL(read_positive(r, node, "time", "end", "s", 1, &c->time_end));
+    yaml_node_t *step = mapping_find(r, node, "step");
+    if (step && !(step->type == YAML_SCALAR_NODE &&
+                  strcmp(scalar_text(step), "auto") == 0)) {
+        if (step->type == YAML_SCALAR_NODE &&
+            step->data.scalar.style == YAML_PLAIN_SCALAR_STYLE &&
+            !is_null_scalar(step)) {
+            char *end = NULL;
+            strtod(scalar_text(step), &end);
+            GSN_CHECK(end != scalar_text(step) && *end == '\0', GSN_ERR_INPUT,
+                      "%s:%d: 'time.step' must be a number (s) or auto, got "
+                      "'%s'",
+                      r->path, node_line(step), scalar_text(step));
+        }
+        GSN_CALL(read_positive(r, node, "time", "step", "s", 1, &c->time_step));
+        c->time_step_auto = 0;
+    }
+    int line = node_line(node);
+    GSN_CALL(
+        read_number(r, node, "time", "safety", &c->time_step_safety, &line));
+    GSN_CHECK(c->time_step_safety > 0.0 && c->time_step_safety <= 1.0,
+              GSN_ERR_INPUT,
+              "%s:%d: 'time.safety' must be in (0, 1] (fraction of the stable "
+              "step), got %g",
+              r->path, line, c->time_step_safety);
+    return GSN_OK;
+}
+
+static int read_output(struct reader *r, const yaml_node_t *root,
+                       struct gsn_case *c)
+{
+    static const char *const keys[] = {"every", NULL};
+    c->output_every = c->time_end / GSN_DEFAULT_FRAMES;
+    yaml_node_t *node = mapping_find(r, root, "output");
+    if (!node)
+        return GSN_OK;
+    GSN_CALL(check_keys(r, node, keys, "output"));
+    GSN_CALL(
+        read_positive(r, node, "output", "every", "s", 0, &c->output_every));
+    return GSN_OK;
+}
+
+static int read_gravity(struct reader *r, const yaml_node_t *root,
+                        struct gsn_case *c)
+{
+    yaml_node_t *node = mapping_find(r, root, "gravity");
+    if (!node)
+        return GSN_OK;
+    int present[3];
+    GSN_CALL(read_vector3(r, node, "gravity", 0, present, c->gravity));
+    return GSN_OK;
+}
+
+static void case_set_defaults(struct gsn_case *c)
+{
+    memset(c, 0, sizeof *c);
+    c->facet_points = GSN_DEFAULT_FACET_POINTS;
+    c->kernel_support = GSN_DEFAULT_KERNEL_SUPPORT;
+    c->kernel_basis_order = GSN_DEFAULT_KERNEL_BASIS_ORDER;
+    c->integration = GSN_INTEGRATION_SCNI;
+    c->gauss_points = GSN_DEFAULT_GAUSS_POINTS;
+    c->stabilization = GSN_STABILIZATION_NONE;
+    c->time_step_auto = 1;
+    c->time_step_safety = GSN_DEFAULT_TIME_STEP_SAFETY;
+}
+
+static int read_document(struct reader *r, struct gsn_case *c)
+{
+    static const char *const keys[] = {
+        "geometry", "particles", "kernel", "integration", "material",
+        "gravity",  "boundary",  "time",   "output",      NULL};
+    yaml_node_t *root = yaml_document_get_root_node(&r->document);
+    GSN_CHECK(root != NULL, GSN_ERR_INPUT,
+              "%s:1: the case file is empty; expected a mapping with "
+              "geometry, particles, material and time",
+              r->path);
+    GSN_CALL(check_keys(r, root, keys, ""));
+    GSN_CALL(read_geometry(r, root, c));
+    GSN_CALL(read_particles(r, root, c));
+    GSN_CALL(read_kernel(r, root, c));
+    GSN_CALL(read_integration(r, root, c));
+    GSN_CALL(read_material(r, root, c));
+    GSN_CALL(read_gravity(r, root, c));
+    GSN_CALL(read_boundary(r, root, c));
+    GSN_CALL(read_time(r, root, c));
+    GSN_CALL(read_output(r, root, c));
+    return GSN_OK;
+}
+
+int gsn_case_load(const char *path, struct gsn_case *out)
+{
+    case_set_defaults(out);
+    GSN_CHECK(strlen(path) < GSN_PATH_SIZE, GSN_ERR_INPUT,
+              "case file path is too long");
+    snprintf(out->path, sizeof out->path, "%s", path);
+    FILE *file = fopen(path, "rb");
+    GSN_CHECK(file != NULL, GSN_ERR_IO, "%s: cannot open the case file: %s",
+              path, strerror(errno));
+
+    struct reader r = {.path = path};
+    yaml_parser_t parser;
+    int rc = GSN_OK;
+    if (!yaml_parser_initialize(&parser)) {
+        fclose(file);
+        GSN_CHECK(0, GSN_ERR_MEMORY, "cannot initialize the YAML parser");
+    }
+    yaml_parser_set_input_file(&parser, file);
+    if (!yaml_parser_load(&parser, &r.document)) {
+        const char *problem = parser.problem ? parser.problem : "syntax error";
+        rc = gsn_error_raise(
+            GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
+            "%s:%d: YAML syntax error: %s%s%s; expected well-formed YAML "
+            "(indent with spaces, 'key: value')",
+            path, (int)parser.problem_mark.line + 1, problem,
+            parser.context ? " " : "", parser.context ? parser.context : "");
+        yaml_parser_delete(&parser);
+        fclose(file);
+        return rc;
+    }
+    /* A second document in the same file is an error too. */
+    yaml_document_t extra;
+    int has_extra = 0;
+    int extra_line = 0;
+    if (yaml_parser_load(&parser, &extra)) {
+        if (yaml_document_get_root_node(&extra)) {
+            has_extra = 1;
+            extra_line = (int)extra.start_mark.line + 1;
+        }
+        yaml_document_delete(&extra);
+    }
+    yaml_parser_delete(&parser);
+    fclose(file);
+
+    if (has_extra)
+        rc = gsn_error_raise(GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
+                             "%s:%d: a second YAML document ('---'); a case "
+                             "file holds exactly one",
+                             path, extra_line);
+    else
+        rc = read_document(&r, out);
+    yaml_document_delete(&r.document);
+    if (rc != GSN_OK)
+        return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
+                              "read_document(&r, out)");
+    return GSN_OK;
+}
+
+int gsn_case_find_boundary(const struct gsn_case *c, const char *name)
+{
+    for (int i = 0; i < c->boundary_count; ++i)
+        if (strcmp(c->boundaries[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+const char *gsn_integration_name(enum gsn_integration integration)
+{
+    static const char *const names[] = {"scni", "dni", "gauss"};
+    return (unsigned)integration < 3 ? names[integration] : "unknown";
+}
+
+static void write_components(FILE *out, const int present[3],
+                             const double value[3])
+{
+    fputc('[', out);
+    for (int k = 0; k < 3; ++k) {
+        if (present[k])
+            fprintf(out, "%.17g", value[k]);
+        else
+            fputs("null", out);
+        fputs(k < 2 ? ", " : "]", out);
+    }
+}
+
+int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
+{
+    static const char *const stabilization_names[] = {"none", "mscni"};
+    static const char *const basis_names[] = {"", "linear", "quadratic"};
+    const struct gsn_material *m = &c->material;
+    fprintf(out, "# resolved parameters of %s\n", c->path);
+    fprintf(out, "geometry: '%s'\n", c->geometry);
+    fprintf(out, "particles: {spacing: %.17g, facet_points: %d}\n",
+            c->particle_spacing, c->facet_points);
+    fprintf(out, "kernel: {support: %.17g, basis: %s}\n", c->kernel_support,
+            basis_names[c->kernel_basis_order == 2 ? 2 : 1]);
+    fprintf(out, "integration: {method: %s, points: %d, stabilization: %s}\n",
+            gsn_integration_name(c->integration), c->gauss_points,
+            stabilization_names[c->stabilization]);
+    fprintf(out,
+            "material:\n  density: %.17g\n  bulk_modulus: %.17g\n"
+            "  shear_modulus: %.17g\n",
+            m->density, m->bulk_modulus, m->shear_modulus);
+    if (m->has_damage)
+        fprintf(out, "  damage: {e0: %.17g, ef: %.17g}\n", m->damage_e0,
+                m->damage_ef);
+    if (m->has_plasticity)
+        fprintf(out,
+                "  drucker_prager: {alpha: %.17g, R: %.17g, dilatancy: "
+                "%.17g}\n",
+                m->dp_alpha, m->dp_R, m->dp_dilatancy);
+    fprintf(out, "gravity: [%.17g, %.17g, %.17g]\n", c->gravity[0],
+            c->gravity[1], c->gravity[2]);
+    fprintf(out, "boundary:%s\n", c->boundary_count ? "" : " {}");
+    for (int i = 0; i < c->boundary_count; ++i) {
+        const struct gsn_boundary *b = &c->boundaries[i];
+        fprintf(out, "  '%s': {fix: [", b->name);
+        int first = 1;
+        for (int k = 0; k < 3; ++k) {
+            if (b->fixed[k]) {
+                fprintf(out, "%s%s", first ? "" : ", ", component_names[k]);
+                first = 0;
+            }
+        }
+        fputs("], velocity: ", out);
+        write_components(out, b->has_velocity, b->velocity);
+        fputs("}\n", out);
+    }
+    if (c->time_step_auto)
+        fprintf(out, "time: {end: %.17g, step: auto, safety: %.17g}\n",
+                c->time_end, c->time_step_safety);
+    else
+        fprintf(out, "time: {end: %.17g, step: %.17g}\n", c->time_end,
+                c->time_step);
+    fprintf(out, "output: {every: %.17g}\n", c->output_every);
+    GSN_CHECK(!ferror(out), GSN_ERR_IO, "cannot write the resolved case");
+    return GSN_OK;
+}
+
+int gsn_case_to_yaml_string(const struct gsn_case *c, char **text)
+{
+    size_t size = 0;
+    *text = NULL;
+    FILE *stream = open_memstream(text, &size);
+    GSN_CHECK(stream != NULL, GSN_ERR_MEMORY, "cannot open a memory stream");
+    int rc = gsn_case_write_yaml(c, stream);
+    fclose(stream);
+    if (rc != GSN_OK) {
+        free(*text);
+        *text = NULL;
+        return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
+                              "gsn_case_write_yaml(c, stream)");
+    }
+    return GSN_OK;
+}

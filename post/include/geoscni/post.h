@@ -1,0 +1,25 @@
+/* post: results.h5 -> ParaView files (.pvd + vtu/), plots and pictures
+ * (DESIGN.md, "What a run leaves"). */
+#ifndef GEOSCNI_POST_H
+#define GEOSCNI_POST_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct gsn_post_options {
+    int no_pictures; /* skip the rendered PNGs */
+    int quiet;
+};
+
+/* Turns OUTDIR/results.h5 and OUTDIR/model.h5 into OUTDIR/CASE.pvd,
+ * OUTDIR/vtu/ and the plots. */
+int gsn_post_run(const char *outdir, const struct gsn_post_options *options);
+
+/* The VTK version loaded at run time, e.g. "9.1.0". */
+const char *gsn_post_vtk_version(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,27 @@
+/* solver: model.h5 -> explicit large-deformation dynamics -> results.h5 and
+ * history.csv (DESIGN.md, "Pipeline"). */
+#ifndef GEOSCNI_SOLVER_H
+#define GEOSCNI_SOLVER_H
+
+#include "geoscni/case.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct gsn_solve_options {
+    int force;   /* accept a time step above the stable one */
+    int restart; /* continue from the checkpoint in results.h5 */
+    int threads; /* 0: OpenMP's default */
+    int quiet;   /* no progress line */
+};
+
+/* Reads OUTDIR/model.h5, runs the case, writes OUTDIR/results.h5 and
+ * OUTDIR/history.csv. */
+int gsn_solve_run(const struct gsn_case *c, const char *outdir,
+                  const struct gsn_solve_options *options);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
