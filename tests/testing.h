@@ -52,7 +52,7 @@ static inline int test_end(const char *name)
 
 /* Relative: |actual - expected| <= tolerance |expected|. */
 #define TEST_REL(actual, expected, tolerance)                                  \
-    TEST_NEAR(actual, expected, (tolerance) * fabs((double)(expected)))
+    TEST_NEAR(actual, expected, (tolerance)*fabs((double)(expected)))
 
 #define TEST_INT(actual, expected)                                             \
     do {                                                                       \

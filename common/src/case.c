@@ -5,6 +5,7 @@
 #include "geoscni/error.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +16,7 @@
 struct reader {
     const char *path;
     yaml_document_t document;
+    char kind_text[96];
 };
 
 static const char *const component_names[3] = {"x", "y", "z"};
@@ -45,13 +47,22 @@ static int is_null_scalar(const yaml_node_t *node)
            strcmp(t, "Null") == 0 || strcmp(t, "NULL") == 0;
 }
 
-static const char *node_kind(const yaml_node_t *node)
+/* "a list of 2", "a mapping", "nothing (null)" or the scalar quoted, for
+ * messages; the text lives in the reader until the next call. */
+static const char *node_kind(struct reader *r, const yaml_node_t *node)
 {
     switch (node->type) {
     case YAML_SCALAR_NODE:
-        return is_null_scalar(node) ? "nothing (null)" : "a scalar";
+        if (is_null_scalar(node))
+            return "nothing (null)";
+        snprintf(r->kind_text, sizeof r->kind_text, "'%.80s'",
+                 scalar_text(node));
+        return r->kind_text;
     case YAML_SEQUENCE_NODE:
-        return "a list";
+        snprintf(r->kind_text, sizeof r->kind_text, "a list of %d",
+                 (int)(node->data.sequence.items.top -
+                       node->data.sequence.items.start));
+        return r->kind_text;
     case YAML_MAPPING_NODE:
         return "a mapping";
     default:
@@ -110,17 +121,27 @@ static void join_keys(const char *const allowed[], char *out, size_t size)
 }
 
 /* The context name of a mapping for messages: "" means the top level. */
-static const char *context_name(const char *context)
+enum { CONTEXT_NAME_SIZE = 96 };
+
+static const char *context_name(const char *context,
+                                char buffer[CONTEXT_NAME_SIZE])
 {
-    return context[0] ? context : "the top level";
+    if (!context[0])
+        return "the top level";
+    snprintf(buffer, CONTEXT_NAME_SIZE, "'%s'", context);
+    return buffer;
 }
 
 static int expect_mapping(struct reader *r, const yaml_node_t *node,
                           const char *context)
 {
+    GSN_CHECK(node->type == YAML_MAPPING_NODE || context[0], GSN_ERR_INPUT,
+              "%s:%d: the case file must be a mapping of keys ('key: "
+              "value' lines), got %s",
+              r->path, node_line(node), node_kind(r, node));
     GSN_CHECK(node->type == YAML_MAPPING_NODE, GSN_ERR_INPUT,
               "%s:%d: '%s' must be a mapping of keys, got %s", r->path,
-              node_line(node), context_name(context), node_kind(node));
+              node_line(node), context, node_kind(r, node));
     return GSN_OK;
 }
 
@@ -128,13 +149,15 @@ static int expect_mapping(struct reader *r, const yaml_node_t *node,
 static int check_keys(struct reader *r, const yaml_node_t *mapping,
                       const char *const allowed[], const char *context)
 {
+    char where[CONTEXT_NAME_SIZE];
     GSN_CALL(expect_mapping(r, mapping, context));
     for (yaml_node_pair_t *p = mapping->data.mapping.pairs.start;
          p < mapping->data.mapping.pairs.top; ++p) {
         yaml_node_t *key = node_get(r, p->key);
         GSN_CHECK(key->type == YAML_SCALAR_NODE, GSN_ERR_INPUT,
                   "%s:%d: a key in %s must be a plain name, got %s", r->path,
-                  node_line(key), context_name(context), node_kind(key));
+                  node_line(key), context_name(context, where),
+                  node_kind(r, key));
         const char *name = scalar_text(key);
         for (yaml_node_pair_t *q = mapping->data.mapping.pairs.start; q < p;
              ++q) {
@@ -142,8 +165,8 @@ static int check_keys(struct reader *r, const yaml_node_t *mapping,
             GSN_CHECK(strcmp(scalar_text(earlier), name) != 0, GSN_ERR_INPUT,
                       "%s:%d: key '%s' appears twice in %s (first at line "
                       "%d); keep one",
-                      r->path, node_line(key), name, context_name(context),
-                      node_line(earlier));
+                      r->path, node_line(key), name,
+                      context_name(context, where), node_line(earlier));
         }
         if (!allowed)
             continue;
@@ -159,13 +182,13 @@ static int check_keys(struct reader *r, const yaml_node_t *mapping,
                     GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
                     "%s:%d: unknown key '%s' in %s; did you mean '%s'? "
                     "(expected one of: %s)",
-                    r->path, node_line(key), name, context_name(context), guess,
-                    list);
+                    r->path, node_line(key), name, context_name(context, where),
+                    guess, list);
             return gsn_error_raise(GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
                                    "%s:%d: unknown key '%s' in %s (expected "
                                    "one of: %s)",
                                    r->path, node_line(key), name,
-                                   context_name(context), list);
+                                   context_name(context, where), list);
         }
     }
     return GSN_OK;
@@ -199,9 +222,12 @@ static int require_key(struct reader *r, const yaml_node_t *mapping,
     *value = mapping_find(r, mapping, key);
     char path[128];
     key_path(path, sizeof path, context, key);
+    GSN_CHECK(*value != NULL || context[0], GSN_ERR_INPUT,
+              "%s:%d: missing required key '%s'; expected %s", r->path,
+              node_line(mapping), key, expected);
     GSN_CHECK(*value != NULL, GSN_ERR_INPUT,
-              "%s:%d: missing required key '%s' in %s; expected %s", r->path,
-              node_line(mapping), key, context_name(context), expected);
+              "%s:%d: missing required key '%s' in '%s'; expected %s", r->path,
+              node_line(mapping), key, context, expected);
     return GSN_OK;
 }
 
@@ -218,13 +244,17 @@ static int parse_number(struct reader *r, const yaml_node_t *node,
         *value = strtod(text, &end);
         ok = end != text && *end == '\0' && errno == 0 && isfinite(*value);
     }
-    if (!ok && node->type == YAML_SCALAR_NODE && !is_null_scalar(node))
-        return gsn_error_raise(GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
-                               "%s:%d: '%s' must be a number, got '%s'",
-                               r->path, node_line(node), name,
-                               scalar_text(node));
+    if (!ok && node->type == YAML_SCALAR_NODE &&
+        node->data.scalar.style != YAML_PLAIN_SCALAR_STYLE) {
+        char *end = NULL;
+        strtod(scalar_text(node), &end);
+        GSN_CHECK(end == scalar_text(node) || *end != '\0', GSN_ERR_INPUT,
+                  "%s:%d: '%s' must be a number, got the quoted text '%s'; "
+                  "write numbers without quotes",
+                  r->path, node_line(node), name, scalar_text(node));
+    }
     GSN_CHECK(ok, GSN_ERR_INPUT, "%s:%d: '%s' must be a number, got %s",
-              r->path, node_line(node), name, node_kind(node));
+              r->path, node_line(node), name, node_kind(r, node));
     return GSN_OK;
 }
 
@@ -247,7 +277,7 @@ static int parse_word(struct reader *r, const yaml_node_t *node,
     join_keys(words, list, sizeof list);
     GSN_CHECK(node->type == YAML_SCALAR_NODE && !is_null_scalar(node),
               GSN_ERR_INPUT, "%s:%d: '%s' must be one of %s, got %s", r->path,
-              node_line(node), name, list, node_kind(node));
+              node_line(node), name, list, node_kind(r, node));
     for (int i = 0; words[i]; ++i) {
         if (strcmp(words[i], scalar_text(node)) == 0) {
             *index = i;
@@ -340,7 +370,7 @@ static int read_geometry(struct reader *r, const yaml_node_t *root,
     GSN_CHECK(node->type == YAML_SCALAR_NODE && !is_null_scalar(node),
               GSN_ERR_INPUT,
               "%s:%d: 'geometry' must be the path of a gmsh file, got %s",
-              r->path, node_line(node), node_kind(node));
+              r->path, node_line(node), node_kind(r, node));
     const char *name = scalar_text(node);
     if (name[0] == '/') {
         snprintf(c->geometry, sizeof c->geometry, "%s", name);
@@ -356,6 +386,10 @@ static int read_geometry(struct reader *r, const yaml_node_t *root,
               "%s:%d: geometry file '%s' not found or not readable (looked "
               "for '%s'; the path is relative to the case file's folder)",
               r->path, node_line(node), name, c->geometry);
+    /* Absolute, so the resolved case stored in outputs reloads anywhere. */
+    char absolute[PATH_MAX];
+    if (realpath(c->geometry, absolute) && strlen(absolute) < GSN_PATH_SIZE)
+        memcpy(c->geometry, absolute, strlen(absolute) + 1);
     return GSN_OK;
 }
 
@@ -524,7 +558,7 @@ static int read_vector3(struct reader *r, const yaml_node_t *node,
     GSN_CHECK(count == 3, GSN_ERR_INPUT,
               "%s:%d: '%s' must be a list of 3 %s [x, y, z], got %s", r->path,
               node_line(node), name, allow_null ? "numbers or null" : "numbers",
-              count < 0 ? node_kind(node) : "a list of another length");
+              node_kind(r, node));
     for (int k = 0; k < 3; ++k) {
         yaml_node_t *item = node_get(r, node->data.sequence.items.start[k]);
         char item_name[128];
@@ -560,7 +594,7 @@ static int read_boundary_entry(struct reader *r, const yaml_node_t *key,
         GSN_CHECK(fix->type == YAML_SEQUENCE_NODE, GSN_ERR_INPUT,
                   "%s:%d: '%s' must be a list of components such as [x, y, "
                   "z], got %s",
-                  r->path, node_line(fix), name, node_kind(fix));
+                  r->path, node_line(fix), name, node_kind(r, fix));
         for (yaml_node_item_t *i = fix->data.sequence.items.start;
              i < fix->data.sequence.items.top; ++i) {
             int k = 0;
@@ -799,9 +833,11 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
             c->particle_spacing, c->facet_points);
     fprintf(out, "kernel: {support: %.17g, basis: %s}\n", c->kernel_support,
             basis_names[c->kernel_basis_order == 2 ? 2 : 1]);
-    fprintf(out, "integration: {method: %s, points: %d, stabilization: %s}\n",
-            gsn_integration_name(c->integration), c->gauss_points,
-            stabilization_names[c->stabilization]);
+    fprintf(out, "integration: {method: %s, ",
+            gsn_integration_name(c->integration));
+    if (c->integration == GSN_INTEGRATION_GAUSS)
+        fprintf(out, "points: %d, ", c->gauss_points);
+    fprintf(out, "stabilization: %s}\n", stabilization_names[c->stabilization]);
     fprintf(out,
             "material:\n  density: %.17g\n  bulk_modulus: %.17g\n"
             "  shear_modulus: %.17g\n",
