@@ -92,7 +92,30 @@ struct gsn_dataset_info {
 
 #define GSN_FRAMES_GROUP "frames"
 #define GSN_FRAME_GROUP_FORMAT "frames/%06d"
+#define GSN_FRAME_ATTR_TIME "time"
+#define GSN_FRAME_ATTR_STEP "step"
+#define GSN_RESULTS_ATTR_FRAME_COUNT "frame_count"
+#define GSN_RESULTS_ATTR_CASE_NAME "case_name"
+
+/* The restart checkpoint of results.h5: the group GSN_CHECKPOINT_GROUP with
+ * attributes "time" (s) and "step", holding the whole state of the explicit
+ * loop (one row per particle). Material state columns are named by the
+ * attribute "names" of checkpoint/material_state.
+ * X(id, path, type, columns, units, description) */
 #define GSN_CHECKPOINT_GROUP "checkpoint"
+#define GSN_CHECKPOINT_DATASETS(X)                                             \
+    X(GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT,                                 \
+      "checkpoint/coefficient_displacement", GSN_H5_DOUBLE, 3, "m",            \
+      "RK coefficients d_I of the displacement (not u(X_I))")                  \
+    X(GSN_CHECKPOINT_COEFFICIENT_VELOCITY, "checkpoint/coefficient_velocity",  \
+      GSN_H5_DOUBLE, 3, "m/s", "RK coefficients of the velocity")              \
+    X(GSN_CHECKPOINT_COEFFICIENT_ACCELERATION,                                 \
+      "checkpoint/coefficient_acceleration", GSN_H5_DOUBLE, 3, "m/s^2",        \
+      "RK coefficients of the acceleration")                                   \
+    X(GSN_CHECKPOINT_STRESS, "checkpoint/stress", GSN_H5_DOUBLE, 6, "Pa",      \
+      "Cauchy stress at the integration points, Voigt xx yy zz xy yz xz")      \
+    X(GSN_CHECKPOINT_ENERGY, "checkpoint/energy", GSN_H5_DOUBLE, 3, "J",       \
+      "kinetic energy, internal energy and external work (one row)")
 
 #define GSN_DATASET_ENUM(id, path, type, columns, units, description) id,
 enum gsn_model_dataset {
@@ -101,11 +124,16 @@ enum gsn_model_dataset {
 enum gsn_frame_field {
     GSN_FRAME_FIELDS(GSN_DATASET_ENUM) GSN_FRAME_FIELD_COUNT
 };
+enum gsn_checkpoint_dataset {
+    GSN_CHECKPOINT_DATASETS(GSN_DATASET_ENUM) GSN_CHECKPOINT_DATASET_COUNT
+};
 #undef GSN_DATASET_ENUM
 
 extern const struct gsn_dataset_info
     gsn_model_datasets[GSN_MODEL_DATASET_COUNT];
 extern const struct gsn_dataset_info gsn_frame_fields[GSN_FRAME_FIELD_COUNT];
+extern const struct gsn_dataset_info
+    gsn_checkpoint_datasets[GSN_CHECKPOINT_DATASET_COUNT];
 
 #ifdef __cplusplus
 }
