@@ -1,0 +1,129 @@
+/* Material models behind one table of function pointers (STYLE.md rule 7,
+ * after CB-Geo mpm's material interface).
+ *
+ * A model is a `struct gsn_material_ops` table: its name, its named state
+ * variables, and create / initialize / update / destroy. The registry
+ * (material_registry.c) finds a table by name; adding a model (for example
+ * Mohr-Coulomb) is one new file material_NAME.c that defines
+ * `gsn_material_NAME_ops` and one line in GSN_MATERIAL_LIST.
+ *
+ * Storage, per point (see geoscni/tensor.h for the conventions):
+ * - stress: 6 doubles, Voigt xx yy zz xy yz xz, NOMINAL Cauchy stress
+ *   sigma (seed paper eq. (6): sigma = (1 - zeta) * effective stress),
+ *   tension positive, Pa. This is the stress of the internal force.
+ * - state: `state_size` doubles in the order of `state_variables`; a
+ *   GSN_STATE_TENSOR variable is 6 consecutive Voigt entries and is rotated
+ *   with the stress by the objective update (stress_update.h).
+ * - strain increment: 6 doubles, Voigt, TENSOR shear (d eps_xy, not
+ *   d gamma_xy), dimensionless.
+ * Arrays of a batch are point-major: point i's stress is stress[6*i + k],
+ * its state state[state_size*i + k].
+ *
+ * References: seed paper (../shared/paper/seed-paper.txt) eqs. (6)-(8) and
+ * Fig. 3; Simo & Ju 1987 (elastic-damage predictor, plastic corrector);
+ * de Souza Neto, Peric & Owen 2008, section 8.3 (Drucker-Prager return to
+ * the cone and to the apex). */
+#ifndef GEOSCNI_MATERIAL_H
+#define GEOSCNI_MATERIAL_H
+
+#include "geoscni/case.h"
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The kind of a state variable is the number of doubles it takes. */
+enum gsn_state_kind {
+    GSN_STATE_SCALAR = 1,
+    GSN_STATE_TENSOR = 6 /* symmetric, Voigt; rotated by the update */
+};
+
+struct gsn_state_variable {
+    const char *name; /* output name, e.g. "damage" */
+    enum gsn_state_kind kind;
+    const char *units;
+    const char *description;
+};
+
+struct gsn_material_ops {
+    const char *name; /* the registry key, e.g. "elastic" */
+    const char *description;
+    int state_variable_count;
+    const struct gsn_state_variable *state_variables;
+    int state_size; /* doubles per point: sum of the kinds */
+    /* 1: update() computes the stress from the state alone (the objective
+     * update then need not rotate the stress array, only the tensor state);
+     * 0: update() reads the (rotated) stress. */
+    int stress_from_state;
+
+    /* Checks the parameters and makes the model's context (its resolved
+     * parameters). GSN_ERR_INPUT for impossible values. */
+    int (*create)(const struct gsn_material *parameters, void **context);
+
+    /* Sets the state of count points that carry the given nominal stress
+     * (e.g. a geostatic initial stress) and no history: no damage, no
+     * plastic strain. stress is read, state written. */
+    int (*initialize)(const void *context, size_t count,
+                      const double *restrict stress, double *restrict state);
+
+    /* One strain-driven step of count points: from the stress and state at
+     * t_n (already rotated to t_{n+1} by the objective update) and the
+     * strain increment, the stress and state at t_{n+1}, in place. Pure:
+     * no allocation, I/O or globals; the caller parallelizes over batches.
+     * Returns GSN_OK, or GSN_ERR_NUMERICAL (raised, naming the point in the
+     * batch) when a point cannot be updated. */
+    int (*update)(const void *context, size_t count,
+                  const double *restrict strain_increment,
+                  double *restrict stress, double *restrict state);
+
+    /* Frees the context and nulls the handle; NULL-safe. */
+    void (*destroy)(void **context);
+};
+
+/* A model with its parameters: what the solver holds. */
+struct gsn_material_model {
+    const struct gsn_material_ops *ops;
+    void *context;
+};
+
+/* The table of a registered model, or NULL. */
+const struct gsn_material_ops *gsn_material_find(const char *name);
+
+/* Number of registered models and the i-th one (for listings and tests). */
+int gsn_material_count(void);
+const struct gsn_material_ops *gsn_material_at(int index);
+
+/* The model a case's material block asks for: "damage_drucker_prager" when
+ * it has damage or plasticity, "elastic" otherwise. (The case file has no
+ * model key yet; this is the one place that maps it.) */
+const char *gsn_material_name_for_case(const struct gsn_material *parameters);
+
+/* Creates the named model (GSN_ERR_INPUT naming the known models if the name
+ * is unknown). The caller owns *model and frees it with
+ * gsn_material_model_destroy. */
+int gsn_material_model_create(const char *name,
+                              const struct gsn_material *parameters,
+                              struct gsn_material_model **model);
+
+/* Frees a model and nulls the handle; NULL-safe. */
+void gsn_material_model_destroy(struct gsn_material_model **model);
+
+/* Offset of a named state variable within a point's state, or -1 if the
+ * model has no such variable (e.g. "damage" of the elastic model). */
+int gsn_material_state_offset(const struct gsn_material_ops *ops,
+                              const char *name);
+
+/* Convenience calls through the table. */
+int gsn_material_initialize(const struct gsn_material_model *model,
+                            size_t count, const double *restrict stress,
+                            double *restrict state);
+int gsn_material_update(const struct gsn_material_model *model, size_t count,
+                        const double *restrict strain_increment,
+                        double *restrict stress, double *restrict state);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
