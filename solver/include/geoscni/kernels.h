@@ -1,0 +1,175 @@
+/* Reproducing-kernel shape functions and the integration of the weak form
+ * (seed paper sections 3 and 4, eqs. (9)-(24)); docs/kernels.md.
+ *
+ * Everything here is Lagrangian: built once on the reference configuration.
+ * Whatever the integration method (SCNI, DNI, Gauss, with or without a
+ * stabilization), the result has ONE structure, so the explicit time loop is
+ * method-agnostic: integration points with a weight and a position, and for
+ * each point a compact row of its neighbours I with the three gradient
+ * components dPsi_I/dX_j stored contiguously (CSR). Shape values Psi_I are
+ * kept at the particles (mass, body force, u(X_J) = sum_I Psi_I(X_J) d_I)
+ * and at the boundary facet quadrature points (tractions).
+ *
+ * References: Chen, Wu, Yoon, You 2001, IJNME 50:435 (SCNI);
+ * Puso, Chen, Zywicz, Elmer 2008, IJNME 74:416 (modified SCNI). */
+#ifndef GEOSCNI_KERNELS_H
+#define GEOSCNI_KERNELS_H
+
+#include "geoscni/case.h"
+#include "geoscni/model.h"
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* More neighbours than this at one point is an input error (support far too
+ * large for the particle spacing). */
+#define GSN_RK_MAX_NEIGHBOURS 4096
+
+/* Largest accepted 1-norm condition number of the scaled moment matrix
+ * M(X) of eq. (15): beyond it more than half of the 16 digits are lost and
+ * the reproducing conditions of eq. (18) no longer hold to 1e-8. */
+#define GSN_RK_CONDITION_LIMIT 1e8
+
+/* Stabilization coefficient of modified SCNI (Puso et al. 2008 use 1). */
+#define GSN_DEFAULT_STABILIZATION_COEFFICIENT 1.0
+
+/* Compressed rows: entries offset[r] .. offset[r+1]-1 of row r, sorted by
+ * index. value and gradient (3 per entry, d/dX_0..2) may be NULL. */
+struct gsn_shape_rows {
+    int row_count;
+    int *offset;      /* row_count + 1 */
+    int *index;       /* particle indices I */
+    double *value;    /* Psi_I, - */
+    double *gradient; /* dPsi_I/dX_j, 1/m, 3 per entry */
+};
+
+/* Frees the arrays and zeroes the struct; accepts a zeroed struct. */
+void gsn_shape_rows_free(struct gsn_shape_rows *rows);
+
+/* The RK approximation: particles, their supports and a cell list. The
+ * kernel of particle I is the cubic B-spline tensor product with box
+ * half-width radius[I] = support * h_I (seed paper eq. (10)). */
+struct gsn_rk {
+    int particle_count;
+    int basis_order; /* 1 linear, 2 quadratic, eq. (11) */
+    int basis_size;  /* 4 or 10 */
+    double *position;
+    double *radius; /* a_I, m */
+    double max_radius;
+    double grid_origin[3];
+    double cell_size;
+    int grid_size[3];
+    int *cell_offset;   /* cells + 1 */
+    int *cell_particle; /* particles by cell, ascending within a cell */
+};
+
+/* Copies the positions (n x 3, m) and spacings h_I (m) and builds the cell
+ * list. support is a/h (> 0); basis_order 1 or 2. */
+int gsn_rk_create(int particle_count, const double *position,
+                  const double *spacing, double support, int basis_order,
+                  struct gsn_rk **out);
+
+/* Frees; accepts NULL and nulls the handle. */
+void gsn_rk_destroy(struct gsn_rk **rk);
+
+/* Local spacing h_I from the nodal domains: the facet-area-weighted mean
+ * distance to the particles that share a facet with I (DESIGN.md, "Support
+ * size"). Degenerate facets of cospherical lattices have no area and no
+ * weight. spacing has particle_count entries, m. */
+int gsn_rk_spacing_from_facets(const struct gsn_model *m, double *spacing);
+
+/* The particles whose kernel covers x (|x_k - X_Ik| < a_I for k = 0..2), in
+ * ascending order. Returns their number; only the first capacity are
+ * written, so a return value above capacity means index was too short. */
+int gsn_rk_neighbours(const struct gsn_rk *rk, const double x[3], int capacity,
+                      int *index);
+
+/* Doubles of workspace gsn_rk_shape_point needs for count neighbours. */
+size_t gsn_rk_work_size(const struct gsn_rk *rk, int count);
+
+/* Pure kernel: Psi_I(x) (eq. (16) with M^{-1}) and, if gradient is not
+ * NULL, dPsi_I/dX (3 per neighbour) for the count neighbours in index.
+ * Returns 0, or 1 if M(x) is singular or its condition number exceeds
+ * GSN_RK_CONDITION_LIMIT (the outputs are then undefined). *condition gets
+ * the 1-norm condition number of the scaled moment matrix. */
+int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
+                       const int *index, double *work, double *psi,
+                       double *gradient, double *condition);
+
+/* Shape values (and gradients if want_gradient) at point_count points
+ * (n x 3, m), one row per point. OpenMP over points; the rows do not depend
+ * on the thread count. A point with an ill-conditioned moment matrix is a
+ * GSN_ERR_NUMERICAL naming the point and its neighbour count. */
+int gsn_rk_shape_rows(const struct gsn_rk *rk, int point_count,
+                      const double *points, int want_gradient,
+                      struct gsn_shape_rows *rows);
+
+/* Options of the kernel and integration build, usually from the case. */
+struct gsn_kernel_options {
+    double support;  /* a/h */
+    int basis_order; /* 1 or 2 */
+    enum gsn_integration integration;
+    int gauss_points; /* per direction per background cell, GAUSS */
+    enum gsn_stabilization stabilization;
+    double stabilization_coefficient; /* MSCNI: weight of the sub-cells */
+};
+
+void gsn_kernel_options_from_case(const struct gsn_case *c,
+                                  struct gsn_kernel_options *options);
+
+/* The integrated weak form, one structure for every method:
+ *   f_int_I = sum_p B_pI^T sigma_p weight_p,  B_pI from gradient row p.
+ * Points [0, main_point_count) are the nodal points (SCNI: smoothed
+ * gradient eq. (20), DNI: gradient at the particle; point p is particle p,
+ * weight V_L) or the Gauss points (weight = Gauss weight x Jacobian, no
+ * particle). Points [main_point_count, point_count) are MSCNI stabilization
+ * points: row = B_s - B_L of a sub-cell s of particle L, weight
+ * = coefficient x V_s; their stress is the elastic C : (B_s - B_L) d (Puso
+ * et al. 2008), which vanishes for every linear field. */
+struct gsn_quadrature {
+    enum gsn_integration method;
+    enum gsn_stabilization stabilization;
+    int particle_count;
+    int point_count;
+    int main_point_count;
+    double *point_weight;   /* m^3 */
+    double *point_position; /* point_count x 3, m */
+    int *point_particle;    /* nodal and stabilization points: L; Gauss: -1 */
+    struct gsn_shape_rows gradient; /* rows = points, value NULL */
+    /* Psi_I(X_J), rows = particles J: lumped mass eq. (28), body force,
+     * u(X_J) = sum_I Psi_I(X_J) d_I. */
+    struct gsn_shape_rows particle_values;
+    /* The quadrature points of the boundary facets (neighbour -1), in facet
+     * order, with Psi_I at each: tractions use the smoothing's quadrature. */
+    int boundary_point_count;
+    int *boundary_point_facet;
+    double *boundary_point_position; /* x 3, m */
+    double *boundary_point_weight;   /* m^2 */
+    struct gsn_shape_rows boundary_values;
+    struct gsn_rk *rk; /* the shape functions (owned) */
+};
+
+/* Builds the shape functions and the integration of model m. Gauss uses
+ * background cells: background_cell_count hexahedra of 8 vertices each
+ * (x 3, vertex (i,j,k) at i + 2j + 4k, trilinear map), or, when
+ * background_cells is NULL, the tetrahedra of the model (each collapsed to
+ * a hexahedron, n^3 points per tetrahedron). */
+int gsn_quadrature_create(const struct gsn_model *m,
+                          const struct gsn_kernel_options *options,
+                          const double *background_cells,
+                          int background_cell_count,
+                          struct gsn_quadrature **out);
+
+/* Frees; accepts NULL and nulls the handle. */
+void gsn_quadrature_destroy(struct gsn_quadrature **q);
+
+/* Bytes of the arrays the time loop reads (points, rows, values). */
+size_t gsn_quadrature_bytes(const struct gsn_quadrature *q);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,175 @@
+/* Parallel construction of compressed rows, independent of the thread
+ * count (kernel_rows.h). */
+#include "kernel_rows.h"
+
+#include "geoscni/error.h"
+
+#include <limits.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+int kernel_row_push(struct kernel_thread *t, int index, double value,
+                    const double *gradient)
+{
+    if (t->count == t->capacity) {
+        long capacity = t->capacity ? 2 * t->capacity : 4096;
+        int *i = realloc(t->out_index, (size_t)capacity * sizeof *i);
+        if (!i)
+            return 1;
+        t->out_index = i;
+        double *v = realloc(t->out_value, (size_t)capacity * sizeof *v);
+        if (!v)
+            return 1;
+        t->out_value = v;
+        double *g = realloc(t->out_gradient, 3 * (size_t)capacity * sizeof *g);
+        if (!g)
+            return 1;
+        t->out_gradient = g;
+        t->capacity = capacity;
+    }
+    t->out_index[t->count] = index;
+    t->out_value[t->count] = value;
+    if (gradient)
+        memcpy(t->out_gradient + 3 * t->count, gradient, 3 * sizeof *gradient);
+    else
+        memset(t->out_gradient + 3 * t->count, 0, 3 * sizeof(double));
+    t->count++;
+    return 0;
+}
+
+static void thread_free(struct kernel_thread *t)
+{
+    free(t->index);
+    free(t->psi);
+    free(t->gradient);
+    free(t->work);
+    free(t->dense);
+    free(t->dense_value);
+    free(t->mark);
+    free(t->touched);
+    free(t->out_index);
+    free(t->out_value);
+    free(t->out_gradient);
+}
+
+static int thread_allocate(struct kernel_thread *t, const struct gsn_rk *rk)
+{
+    size_t cap = GSN_RK_MAX_NEIGHBOURS, n = (size_t)rk->particle_count;
+    memset(t, 0, sizeof *t);
+    t->index = malloc(cap * sizeof *t->index);
+    t->psi = malloc(cap * sizeof *t->psi);
+    t->gradient = malloc(3 * cap * sizeof *t->gradient);
+    t->work = malloc(gsn_rk_work_size(rk, (int)cap) * sizeof *t->work);
+    t->dense = calloc(3 * n, sizeof *t->dense);
+    t->dense_value = calloc(n, sizeof *t->dense_value);
+    t->mark = calloc(n, sizeof *t->mark);
+    t->touched = malloc(n * sizeof *t->touched);
+    return t->index && t->psi && t->gradient && t->work && t->dense &&
+           t->dense_value && t->mark && t->touched;
+}
+
+int kernel_rows_build(const struct gsn_rk *rk, int row_count, kernel_row_fn fn,
+                      void *context, int want_value, int want_gradient,
+                      struct gsn_shape_rows *rows)
+{
+    memset(rows, 0, sizeof *rows);
+    int threads = omp_get_max_threads();
+    size_t nr = (size_t)row_count;
+    struct kernel_thread *team = calloc((size_t)threads, sizeof *team);
+    int *row_thread = malloc((nr ? nr : 1) * sizeof *row_thread);
+    long *row_start = malloc((nr ? nr : 1) * sizeof *row_start);
+    long *row_length = malloc((nr ? nr : 1) * sizeof *row_length);
+    int *fail_row = malloc((size_t)threads * sizeof *fail_row);
+    int *fail_code = malloc((size_t)threads * sizeof *fail_code);
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(
+        team && row_thread && row_start && row_length && fail_row && fail_code,
+        rc, GSN_ERR_MEMORY, done, "cannot allocate %d rows", row_count);
+    int allocated = 1;
+    for (int i = 0; i < threads; ++i) {
+        allocated &= thread_allocate(&team[i], rk);
+        fail_row[i] = INT_MAX;
+        fail_code[i] = GSN_OK;
+    }
+    GSN_CHECK_GOTO(allocated, rc, GSN_ERR_MEMORY, done,
+                   "cannot allocate the scratch of %d threads", threads);
+
+#pragma omp parallel num_threads(threads)
+    {
+        int tid = omp_get_thread_num();
+        struct kernel_thread *t = &team[tid];
+#pragma omp for schedule(dynamic, 64)
+        for (int r = 0; r < row_count; ++r) {
+            row_thread[r] = tid;
+            row_start[r] = t->count;
+            row_length[r] = 0;
+            if (fail_code[tid] != GSN_OK)
+                continue;
+            int code = fn(context, r, t);
+            row_length[r] = t->count - row_start[r];
+            if (code != GSN_OK) {
+                fail_code[tid] = code;
+                fail_row[tid] = r;
+            }
+        }
+    }
+    /* Report the failure of the lowest row among the threads. */
+    int worst = -1;
+    for (int i = 0; i < threads; ++i)
+        if (fail_code[i] != GSN_OK &&
+            (worst < 0 || fail_row[i] < fail_row[worst]))
+            worst = i;
+    GSN_CHECK_GOTO(worst < 0, rc, worst >= 0 ? fail_code[worst] : GSN_OK, done,
+                   "%s", worst >= 0 ? team[worst].message : "");
+
+    rows->row_count = row_count;
+    rows->offset = malloc((nr + 1) * sizeof *rows->offset);
+    GSN_CHECK_GOTO(rows->offset, rc, GSN_ERR_MEMORY, done,
+                   "cannot allocate row offsets");
+    long total = 0;
+    rows->offset[0] = 0;
+    for (size_t r = 0; r < nr; ++r) {
+        total += row_length[r];
+        GSN_CHECK_GOTO(total <= INT_MAX, rc, GSN_ERR_INPUT, done,
+                       "more than %d row entries", INT_MAX);
+        rows->offset[r + 1] = (int)total;
+    }
+    size_t nt = (size_t)total;
+    rows->index = malloc((nt ? nt : 1) * sizeof *rows->index);
+    if (want_value)
+        rows->value = malloc((nt ? nt : 1) * sizeof *rows->value);
+    if (want_gradient)
+        rows->gradient = malloc(3 * (nt ? nt : 1) * sizeof *rows->gradient);
+    GSN_CHECK_GOTO(rows->index && (!want_value || rows->value) &&
+                       (!want_gradient || rows->gradient),
+                   rc, GSN_ERR_MEMORY, done, "cannot allocate %ld row entries",
+                   total);
+#pragma omp parallel for schedule(static)
+    for (int r = 0; r < row_count; ++r) {
+        const struct kernel_thread *t = &team[row_thread[r]];
+        size_t src = (size_t)row_start[r], dst = (size_t)rows->offset[r];
+        size_t len = (size_t)row_length[r];
+        if (len == 0)
+            continue;
+        memcpy(rows->index + dst, t->out_index + src, len * sizeof(int));
+        if (want_value)
+            memcpy(rows->value + dst, t->out_value + src, len * sizeof(double));
+        if (want_gradient)
+            memcpy(rows->gradient + 3 * dst, t->out_gradient + 3 * src,
+                   3 * len * sizeof(double));
+    }
+done:
+    if (team)
+        for (int i = 0; i < threads; ++i)
+            thread_free(&team[i]);
+    free(team);
+    free(row_thread);
+    free(row_start);
+    free(row_length);
+    free(fail_row);
+    free(fail_code);
+    if (rc != GSN_OK)
+        gsn_shape_rows_free(rows);
+    return rc;
+}

@@ -1,0 +1,43 @@
+/* Building compressed rows in parallel so that the result does not depend on
+ * the thread count: each row is computed whole by one thread into that
+ * thread's buffer, then the rows are gathered in row order. */
+#ifndef GEOSCNI_KERNEL_ROWS_H
+#define GEOSCNI_KERNEL_ROWS_H
+
+#include "geoscni/kernels.h"
+
+#include <stddef.h>
+
+/* Per-thread scratch handed to the row function. */
+struct kernel_thread {
+    int *index;          /* GSN_RK_MAX_NEIGHBOURS */
+    double *psi;         /* GSN_RK_MAX_NEIGHBOURS */
+    double *gradient;    /* 3 GSN_RK_MAX_NEIGHBOURS */
+    double *work;        /* gsn_rk_work_size for GSN_RK_MAX_NEIGHBOURS */
+    double *dense;       /* 3 per particle, zero between rows */
+    double *dense_value; /* 1 per particle, zero between rows */
+    int *mark;           /* 1 per particle, 0 between rows */
+    int *touched;        /* particle_count */
+    /* the row being written */
+    long count, capacity;
+    int *out_index;
+    double *out_value;
+    double *out_gradient;
+    char message[256];
+};
+
+/* Appends one entry to the current row; 1 if out of memory. */
+int kernel_row_push(struct kernel_thread *t, int index, double value,
+                    const double *gradient);
+
+/* Computes row r into t with kernel_row_push (indices ascending); returns
+ * GSN_OK or an error code with t->message set. */
+typedef int (*kernel_row_fn)(void *context, int row, struct kernel_thread *t);
+
+/* Runs fn for every row in parallel and gathers the rows. want_value and
+ * want_gradient say which arrays rows gets. */
+int kernel_rows_build(const struct gsn_rk *rk, int row_count, kernel_row_fn fn,
+                      void *context, int want_value, int want_gradient,
+                      struct gsn_shape_rows *rows);
+
+#endif

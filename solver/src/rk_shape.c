@@ -1,0 +1,441 @@
+/* Reproducing-kernel shape functions (seed paper eqs. (9)-(18)) with the
+ * cubic B-spline tensor-product kernel, the cell list that finds the
+ * particles covering a point, and the local spacing h_I.
+ *
+ * Eq. (16) as printed lacks the inverse; the shape function is
+ *   Psi_I(X) = h^T(0) M^{-1}(X) h(X_I - X) phi(X_I - X)   (DESIGN.md).
+ * The basis is evaluated in scaled coordinates z = (X_I - X)/s, which leaves
+ * Psi unchanged (a diagonal similarity of M) and keeps M of order one. */
+#include "geoscni/error.h"
+#include "geoscni/kernels.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void gsn_shape_rows_free(struct gsn_shape_rows *rows)
+{
+    if (!rows)
+        return;
+    free(rows->offset);
+    free(rows->index);
+    free(rows->value);
+    free(rows->gradient);
+    memset(rows, 0, sizeof *rows);
+}
+
+/* Cubic B-spline w(r), r = |x|/a, and dw/dr (seed paper ref. [7]); the
+ * normalization cancels in Psi. */
+static inline void bspline(double r, double *w, double *dw)
+{
+    if (r <= 0.5) {
+        *w = 2.0 / 3.0 - 4.0 * r * r + 4.0 * r * r * r;
+        *dw = -8.0 * r + 12.0 * r * r;
+    } else if (r < 1.0) {
+        double q = 1.0 - r;
+        *w = 4.0 / 3.0 * q * q * q;
+        *dw = -4.0 * q * q;
+    } else {
+        *w = 0.0;
+        *dw = 0.0;
+    }
+}
+
+/* Monomial basis h(z) of eq. (11): 1, z0, z1, z2 [, z0^2, z1^2, z2^2,
+ * z0 z1, z1 z2, z0 z2]. */
+static inline void basis_eval(int size, const double *z, double *h)
+{
+    h[0] = 1.0;
+    h[1] = z[0];
+    h[2] = z[1];
+    h[3] = z[2];
+    if (size == 10) {
+        h[4] = z[0] * z[0];
+        h[5] = z[1] * z[1];
+        h[6] = z[2] * z[2];
+        h[7] = z[0] * z[1];
+        h[8] = z[1] * z[2];
+        h[9] = z[0] * z[2];
+    }
+}
+
+/* dh/dz_k. */
+static inline void basis_derivative(int size, const double *z, int k,
+                                    double *dh)
+{
+    dh[0] = 0.0;
+    dh[1] = k == 0;
+    dh[2] = k == 1;
+    dh[3] = k == 2;
+    if (size == 10) {
+        dh[4] = k == 0 ? 2.0 * z[0] : 0.0;
+        dh[5] = k == 1 ? 2.0 * z[1] : 0.0;
+        dh[6] = k == 2 ? 2.0 * z[2] : 0.0;
+        dh[7] = k == 0 ? z[1] : (k == 1 ? z[0] : 0.0);
+        dh[8] = k == 1 ? z[2] : (k == 2 ? z[1] : 0.0);
+        dh[9] = k == 0 ? z[2] : (k == 2 ? z[0] : 0.0);
+    }
+}
+
+static inline double dot(int n, const double *a, const double *b)
+{
+    double s = 0.0;
+    for (int i = 0; i < n; ++i)
+        s += a[i] * b[i];
+    return s;
+}
+
+/* Cholesky M = L L^T in place (lower triangle); 1 if not positive. */
+static int cholesky(int n, double *a)
+{
+    for (int j = 0; j < n; ++j) {
+        double d = a[j * n + j];
+        for (int k = 0; k < j; ++k)
+            d -= a[j * n + k] * a[j * n + k];
+        if (!(d > 0.0))
+            return 1;
+        d = sqrt(d);
+        a[j * n + j] = d;
+        for (int i = j + 1; i < n; ++i) {
+            double s = a[i * n + j];
+            for (int k = 0; k < j; ++k)
+                s -= a[i * n + k] * a[j * n + k];
+            a[i * n + j] = s / d;
+        }
+    }
+    return 0;
+}
+
+static void cholesky_solve(int n, const double *l, double *x)
+{
+    for (int i = 0; i < n; ++i) {
+        double s = x[i];
+        for (int k = 0; k < i; ++k)
+            s -= l[i * n + k] * x[k];
+        x[i] = s / l[i * n + i];
+    }
+    for (int i = n - 1; i >= 0; --i) {
+        double s = x[i];
+        for (int k = i + 1; k < n; ++k)
+            s -= l[k * n + i] * x[k];
+        x[i] = s / l[i * n + i];
+    }
+}
+
+static double norm1(int n, const double *a)
+{
+    double best = 0.0;
+    for (int j = 0; j < n; ++j) {
+        double s = 0.0;
+        for (int i = 0; i < n; ++i)
+            s += fabs(a[i * n + j]);
+        if (s > best)
+            best = s;
+    }
+    return best;
+}
+
+size_t gsn_rk_work_size(const struct gsn_rk *rk, int count)
+{
+    size_t m = (size_t)rk->basis_size;
+    return 8 * (size_t)count + 4 * m * m + 8 * m;
+}
+
+int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
+                       const int *index, double *work, double *psi,
+                       double *gradient, double *condition)
+{
+    const int m = rk->basis_size;
+    const size_t mm = (size_t)m * (size_t)m;
+    double *z = work;                      /* 3 per neighbour */
+    double *phi = z + 3 * (size_t)count;   /* 1 */
+    double *dphi = phi + count;            /* 3 */
+    double *hb = dphi + 3 * (size_t)count; /* h_I . b */
+    double *moment = hb + count;
+    double *factor = moment + mm;
+    double *inverse = factor + mm;
+    double *b = inverse + mm;
+    double *g = b + m; /* 3 m: dM/dX_k b, then db/dX_k */
+    double *h = g + 3 * m;
+    double *dh = h + m;
+    *condition = INFINITY;
+    if (count < m)
+        return 1;
+
+    double s = 0.0;
+    for (int n = 0; n < count; ++n)
+        if (rk->radius[index[n]] > s)
+            s = rk->radius[index[n]];
+
+    /* Kernel values and derivatives; moment matrix eq. (15). */
+    memset(moment, 0, mm * sizeof *moment);
+    for (int n = 0; n < count; ++n) {
+        const double *xi = rk->position + 3 * (size_t)index[n];
+        const double a = rk->radius[index[n]];
+        double w[3], dw[3];
+        for (int k = 0; k < 3; ++k) {
+            double d = xi[k] - x[k];
+            z[3 * n + k] = d / s;
+            bspline(fabs(d) / a, &w[k], &dw[k]);
+            /* d r_k / d X_k = sign(X_k - X_Ik) / a */
+            dw[k] *= (d > 0.0 ? -1.0 : 1.0) / a;
+        }
+        phi[n] = w[0] * w[1] * w[2];
+        dphi[3 * n + 0] = dw[0] * w[1] * w[2];
+        dphi[3 * n + 1] = w[0] * dw[1] * w[2];
+        dphi[3 * n + 2] = w[0] * w[1] * dw[2];
+        basis_eval(m, z + 3 * n, h);
+        for (int i = 0; i < m; ++i)
+            for (int j = 0; j <= i; ++j)
+                moment[i * m + j] += phi[n] * h[i] * h[j];
+    }
+    for (int i = 0; i < m; ++i)
+        for (int j = i + 1; j < m; ++j)
+            moment[i * m + j] = moment[j * m + i];
+
+    /* b = M^{-1} h(0), eq. (14); the condition number from the inverse. */
+    memcpy(factor, moment, mm * sizeof *factor);
+    if (cholesky(m, factor))
+        return 1;
+    for (int j = 0; j < m; ++j) {
+        double *col = h;
+        memset(col, 0, (size_t)m * sizeof *col);
+        col[j] = 1.0;
+        cholesky_solve(m, factor, col);
+        for (int i = 0; i < m; ++i)
+            inverse[i * m + j] = col[i];
+    }
+    *condition = norm1(m, moment) * norm1(m, inverse);
+    if (!(*condition <= GSN_RK_CONDITION_LIMIT))
+        return 1;
+    for (int i = 0; i < m; ++i)
+        b[i] = inverse[i * m + 0];
+
+    for (int n = 0; n < count; ++n) {
+        basis_eval(m, z + 3 * n, h);
+        hb[n] = dot(m, h, b);
+        psi[n] = hb[n] * phi[n]; /* eq. (16) */
+    }
+    if (!gradient)
+        return 0;
+
+    /* dM/dX_k b, with dh_I/dX_k = -(1/s) dh/dz_k. */
+    memset(g, 0, 3 * (size_t)m * sizeof *g);
+    for (int n = 0; n < count; ++n) {
+        basis_eval(m, z + 3 * n, h);
+        for (int k = 0; k < 3; ++k) {
+            basis_derivative(m, z + 3 * n, k, dh);
+            double dhb = -dot(m, dh, b) / s;
+            double *gk = g + k * m;
+            for (int i = 0; i < m; ++i)
+                gk[i] += dphi[3 * n + k] * hb[n] * h[i] +
+                         phi[n] * (-hb[n] * dh[i] / s + dhb * h[i]);
+        }
+    }
+    /* db/dX_k = -M^{-1} (dM/dX_k) b */
+    for (int k = 0; k < 3; ++k) {
+        double *gk = g + k * m;
+        cholesky_solve(m, factor, gk);
+        for (int i = 0; i < m; ++i)
+            gk[i] = -gk[i];
+    }
+    for (int n = 0; n < count; ++n) {
+        basis_eval(m, z + 3 * n, h);
+        for (int k = 0; k < 3; ++k) {
+            basis_derivative(m, z + 3 * n, k, dh);
+            gradient[3 * n + k] = dot(m, g + k * m, h) * phi[n] -
+                                  dot(m, b, dh) / s * phi[n] +
+                                  hb[n] * dphi[3 * n + k];
+        }
+    }
+    return 0;
+}
+
+static int grid_cell(const struct gsn_rk *rk, int k, double x)
+{
+    double c = floor((x - rk->grid_origin[k]) / rk->cell_size);
+    if (c < 0.0)
+        return 0;
+    if (c > rk->grid_size[k] - 1)
+        return rk->grid_size[k] - 1;
+    return (int)c;
+}
+
+int gsn_rk_neighbours(const struct gsn_rk *rk, const double x[3], int capacity,
+                      int *index)
+{
+    int lo[3], hi[3], count = 0;
+    for (int k = 0; k < 3; ++k) {
+        lo[k] = grid_cell(rk, k, x[k] - rk->max_radius);
+        hi[k] = grid_cell(rk, k, x[k] + rk->max_radius);
+    }
+    for (int c2 = lo[2]; c2 <= hi[2]; ++c2)
+        for (int c1 = lo[1]; c1 <= hi[1]; ++c1)
+            for (int c0 = lo[0]; c0 <= hi[0]; ++c0) {
+                size_t cell = (size_t)c0 +
+                              (size_t)rk->grid_size[0] *
+                                  ((size_t)c1 + (size_t)rk->grid_size[1] * c2);
+                for (int e = rk->cell_offset[cell];
+                     e < rk->cell_offset[cell + 1]; ++e) {
+                    int p = rk->cell_particle[e];
+                    const double *xp = rk->position + 3 * (size_t)p;
+                    double a = rk->radius[p];
+                    if (fabs(x[0] - xp[0]) < a && fabs(x[1] - xp[1]) < a &&
+                        fabs(x[2] - xp[2]) < a) {
+                        if (count < capacity)
+                            index[count] = p;
+                        ++count;
+                    }
+                }
+            }
+    if (count > capacity)
+        return count;
+    /* Insertion sort: the lists are short and nearly sorted by cell. */
+    for (int i = 1; i < count; ++i) {
+        int v = index[i], j = i - 1;
+        while (j >= 0 && index[j] > v) {
+            index[j + 1] = index[j];
+            --j;
+        }
+        index[j + 1] = v;
+    }
+    return count;
+}
+
+void gsn_rk_destroy(struct gsn_rk **rk)
+{
+    if (!rk || !*rk)
+        return;
+    free((*rk)->position);
+    free((*rk)->radius);
+    free((*rk)->cell_offset);
+    free((*rk)->cell_particle);
+    free(*rk);
+    *rk = NULL;
+}
+
+int gsn_rk_create(int particle_count, const double *position,
+                  const double *spacing, double support, int basis_order,
+                  struct gsn_rk **out)
+{
+    *out = NULL;
+    GSN_CHECK(particle_count > 0, GSN_ERR_INPUT, "no particles");
+    GSN_CHECK(support > 0.0 && isfinite(support), GSN_ERR_INPUT,
+              "kernel support %g must be positive", support);
+    GSN_CHECK(basis_order == 1 || basis_order == 2, GSN_ERR_INPUT,
+              "basis order %d: only 1 (linear) or 2 (quadratic)", basis_order);
+    size_t n = (size_t)particle_count;
+    struct gsn_rk *rk = calloc(1, sizeof *rk);
+    GSN_CHECK(rk != NULL, GSN_ERR_MEMORY, "cannot allocate the RK struct");
+    int rc = GSN_OK;
+    rk->particle_count = particle_count;
+    rk->basis_order = basis_order;
+    rk->basis_size = basis_order == 1 ? 4 : 10;
+    rk->position = malloc(3 * n * sizeof *rk->position);
+    rk->radius = malloc(n * sizeof *rk->radius);
+    GSN_CHECK_GOTO(rk->position && rk->radius, rc, GSN_ERR_MEMORY, fail,
+                   "cannot allocate %d particles", particle_count);
+    memcpy(rk->position, position, 3 * n * sizeof *rk->position);
+    double lo[3] = {INFINITY, INFINITY, INFINITY};
+    double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    rk->max_radius = 0.0;
+    for (size_t p = 0; p < n; ++p) {
+        GSN_CHECK_GOTO(
+            spacing[p] > 0.0 && isfinite(spacing[p]), rc, GSN_ERR_INPUT, fail,
+            "particle %zu: spacing %g must be positive", p, spacing[p]);
+        rk->radius[p] = support * spacing[p];
+        if (rk->radius[p] > rk->max_radius)
+            rk->max_radius = rk->radius[p];
+        for (int k = 0; k < 3; ++k) {
+            double v = position[3 * p + k];
+            GSN_CHECK_GOTO(isfinite(v), rc, GSN_ERR_INPUT, fail,
+                           "particle %zu: position is not finite", p);
+            lo[k] = fmin(lo[k], v);
+            hi[k] = fmax(hi[k], v);
+        }
+    }
+    /* Cells of the largest radius; coarser if that would give far more
+     * cells than particles. */
+    rk->cell_size = rk->max_radius;
+    for (;;) {
+        double cells = 1.0;
+        for (int k = 0; k < 3; ++k)
+            cells *= floor((hi[k] - lo[k]) / rk->cell_size) + 1.0;
+        if (cells <= 8.0 * (double)n + 64.0)
+            break;
+        rk->cell_size *= 1.5;
+    }
+    size_t cells = 1;
+    for (int k = 0; k < 3; ++k) {
+        rk->grid_origin[k] = lo[k];
+        rk->grid_size[k] = (int)floor((hi[k] - lo[k]) / rk->cell_size) + 1;
+        cells *= (size_t)rk->grid_size[k];
+    }
+    rk->cell_offset = calloc(cells + 1, sizeof *rk->cell_offset);
+    rk->cell_particle = malloc(n * sizeof *rk->cell_particle);
+    GSN_CHECK_GOTO(rk->cell_offset && rk->cell_particle, rc, GSN_ERR_MEMORY,
+                   fail, "cannot allocate the cell list");
+    for (size_t p = 0; p < n; ++p) {
+        const double *xp = position + 3 * p;
+        size_t c = (size_t)grid_cell(rk, 0, xp[0]) +
+                   (size_t)rk->grid_size[0] *
+                       ((size_t)grid_cell(rk, 1, xp[1]) +
+                        (size_t)rk->grid_size[1] * grid_cell(rk, 2, xp[2]));
+        rk->cell_offset[c + 1]++;
+    }
+    for (size_t c = 0; c < cells; ++c)
+        rk->cell_offset[c + 1] += rk->cell_offset[c];
+    /* Fill in particle order so each cell lists ascending indices. */
+    for (size_t p = 0; p < n; ++p) {
+        const double *xp = position + 3 * p;
+        size_t c = (size_t)grid_cell(rk, 0, xp[0]) +
+                   (size_t)rk->grid_size[0] *
+                       ((size_t)grid_cell(rk, 1, xp[1]) +
+                        (size_t)rk->grid_size[1] * grid_cell(rk, 2, xp[2]));
+        rk->cell_particle[rk->cell_offset[c]++] = (int)p;
+    }
+    for (size_t c = cells; c > 0; --c)
+        rk->cell_offset[c] = rk->cell_offset[c - 1];
+    rk->cell_offset[0] = 0;
+    *out = rk;
+    return GSN_OK;
+fail:
+    gsn_rk_destroy(&rk);
+    return rc;
+}
+
+int gsn_rk_spacing_from_facets(const struct gsn_model *m, double *spacing)
+{
+    int n = m->particle_count;
+    double *area = calloc((size_t)n > 0 ? (size_t)n : 1, sizeof *area);
+    GSN_CHECK(area != NULL, GSN_ERR_MEMORY, "cannot allocate %d doubles", n);
+    for (int p = 0; p < n; ++p)
+        spacing[p] = 0.0;
+    for (int f = 0; f < m->facet_count; ++f) {
+        int o = m->facet_owner[f], q = m->facet_neighbour[f];
+        if (q < 0)
+            continue;
+        const double *xo = m->position + 3 * (size_t)o;
+        const double *xq = m->position + 3 * (size_t)q;
+        double d = sqrt((xo[0] - xq[0]) * (xo[0] - xq[0]) +
+                        (xo[1] - xq[1]) * (xo[1] - xq[1]) +
+                        (xo[2] - xq[2]) * (xo[2] - xq[2]));
+        double a = m->facet_area[f];
+        spacing[o] += a * d;
+        spacing[q] += a * d;
+        area[o] += a;
+        area[q] += a;
+    }
+    for (int p = 0; p < n; ++p) {
+        if (!(area[p] > 0.0)) {
+            free(area);
+            GSN_CHECK(0, GSN_ERR_INPUT,
+                      "particle %d shares no facet with another particle: "
+                      "no local spacing",
+                      p);
+        }
+        spacing[p] /= area[p];
+    }
+    free(area);
+    return GSN_OK;
+}
