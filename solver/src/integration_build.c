@@ -1,0 +1,624 @@
+/* Integration of the weak form on the reference configuration: SCNI
+ * (smoothed gradients, seed paper eqs. (19)-(20)), DNI (gradients at the
+ * particles), Gauss quadrature on background cells, and the modified-SCNI
+ * stabilization; all produce one struct gsn_quadrature (geoscni/kernels.h,
+ * docs/kernels.md). */
+#include "geoscni/error.h"
+#include "geoscni/kernels.h"
+#include "kernel_rows.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void gsn_kernel_options_from_case(const struct gsn_case *c,
+                                  struct gsn_kernel_options *options)
+{
+    options->support = c->kernel_support;
+    options->basis_order = c->kernel_basis_order;
+    options->integration = c->integration;
+    options->gauss_points = c->gauss_points;
+    options->stabilization = c->stabilization;
+    options->stabilization_coefficient = GSN_DEFAULT_STABILIZATION_COEFFICIENT;
+}
+
+void gsn_quadrature_destroy(struct gsn_quadrature **q)
+{
+    if (!q || !*q)
+        return;
+    struct gsn_quadrature *p = *q;
+    free(p->point_weight);
+    free(p->point_position);
+    free(p->point_particle);
+    gsn_shape_rows_free(&p->gradient);
+    gsn_shape_rows_free(&p->particle_values);
+    free(p->boundary_point_facet);
+    free(p->boundary_point_position);
+    free(p->boundary_point_weight);
+    gsn_shape_rows_free(&p->boundary_values);
+    gsn_rk_destroy(&p->rk);
+    free(p);
+    *q = NULL;
+}
+
+static size_t rows_bytes(const struct gsn_shape_rows *r)
+{
+    if (!r->offset)
+        return 0;
+    size_t nnz = (size_t)r->offset[r->row_count];
+    return (size_t)(r->row_count + 1) * sizeof(int) + nnz * sizeof(int) +
+           (r->value ? nnz * sizeof(double) : 0) +
+           (r->gradient ? 3 * nnz * sizeof(double) : 0);
+}
+
+size_t gsn_quadrature_bytes(const struct gsn_quadrature *q)
+{
+    size_t np = (size_t)q->point_count, nb = (size_t)q->boundary_point_count;
+    return np * (4 * sizeof(double) + sizeof(int)) + rows_bytes(&q->gradient) +
+           rows_bytes(&q->particle_values) +
+           nb * (4 * sizeof(double) + sizeof(int)) +
+           rows_bytes(&q->boundary_values);
+}
+
+/* ---- SCNI: eq. (20) per particle from its facets ------------------------ */
+
+struct facet_context {
+    const struct gsn_model *m;
+    const struct gsn_rk *rk;
+    const int *particle_facet_offset; /* facets of each particle, ascending */
+    const int *particle_facet;
+    const struct gsn_shape_rows *nodal; /* B_L rows (MSCNI) */
+};
+
+static int compare_int(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
+/* Adds v (3) to the dense accumulator of particle i. */
+static inline void accumulate(struct kernel_thread *t, int *touched_count,
+                              int i, const double *v)
+{
+    if (!t->mark[i]) {
+        t->mark[i] = 1;
+        t->touched[(*touched_count)++] = i;
+    }
+    for (int k = 0; k < 3; ++k)
+        t->dense[3 * (size_t)i + k] += v[k];
+}
+
+/* Writes the touched entries in ascending order (scaled by scale) and
+ * clears the accumulator. */
+static int flush(struct kernel_thread *t, int touched_count, double scale)
+{
+    qsort(t->touched, (size_t)touched_count, sizeof(int), compare_int);
+    int failed = 0;
+    for (int e = 0; e < touched_count; ++e) {
+        int i = t->touched[e];
+        double *d = t->dense + 3 * (size_t)i;
+        double g[3] = {d[0] * scale, d[1] * scale, d[2] * scale};
+        failed |= kernel_row_push(t, i, 0.0, g);
+        d[0] = d[1] = d[2] = 0.0;
+        t->mark[i] = 0;
+    }
+    return failed;
+}
+
+static int evaluate(const struct gsn_rk *rk, const double *x, int want_grad,
+                    struct kernel_thread *t, int *count, const char *what,
+                    int which)
+{
+    *count = gsn_rk_neighbours(rk, x, GSN_RK_MAX_NEIGHBOURS, t->index);
+    if (*count > GSN_RK_MAX_NEIGHBOURS) {
+        snprintf(t->message, sizeof t->message,
+                 "%s %d at (%g, %g, %g) is covered by %d kernels, more than "
+                 "%d: the support is too large",
+                 what, which, x[0], x[1], x[2], *count, GSN_RK_MAX_NEIGHBOURS);
+        return GSN_ERR_INPUT;
+    }
+    double condition;
+    if (gsn_rk_shape_point(rk, x, *count, t->index, t->work, t->psi,
+                           want_grad ? t->gradient : NULL, &condition)) {
+        snprintf(t->message, sizeof t->message,
+                 "%s %d at (%g, %g, %g): moment matrix singular or "
+                 "ill-conditioned (condition number %.3g, limit %.3g) with %d "
+                 "particles covering it (the basis has %d terms): enlarge "
+                 "the kernel support",
+                 what, which, x[0], x[1], x[2], condition,
+                 GSN_RK_CONDITION_LIMIT, *count, rk->basis_size);
+        return GSN_ERR_NUMERICAL;
+    }
+    return GSN_OK;
+}
+
+/* Row L: (1/V_L) sum over the facets of L of sum_q Psi_I(x_q) N w_q, with
+ * N outward from L (the neighbour side uses the owner's points with the
+ * opposite normal, so interior facets cancel exactly: eq. (24)). */
+static int scni_row(void *context, int L, struct kernel_thread *t)
+{
+    const struct facet_context *c = context;
+    const struct gsn_model *m = c->m;
+    int touched = 0;
+    for (int e = c->particle_facet_offset[L];
+         e < c->particle_facet_offset[L + 1]; ++e) {
+        int f = c->particle_facet[e];
+        double sign = m->facet_owner[f] == L ? 1.0 : -1.0;
+        const double *normal = m->facet_normal + 3 * (size_t)f;
+        for (int q = m->facet_point_offset[f]; q < m->facet_point_offset[f + 1];
+             ++q) {
+            int count;
+            int rc = evaluate(c->rk, m->facet_point + 3 * (size_t)q, 0, t,
+                              &count, "facet point", q);
+            if (rc != GSN_OK)
+                return rc;
+            double w = sign * m->facet_weight[q];
+            for (int n = 0; n < count; ++n) {
+                double v[3] = {t->psi[n] * normal[0] * w,
+                               t->psi[n] * normal[1] * w,
+                               t->psi[n] * normal[2] * w};
+                accumulate(t, &touched, t->index[n], v);
+            }
+        }
+    }
+    if (flush(t, touched, 1.0 / m->volume[L])) {
+        snprintf(t->message, sizeof t->message, "out of memory at row %d", L);
+        return GSN_ERR_MEMORY;
+    }
+    return GSN_OK;
+}
+
+/* ---- MSCNI: sub-cell gradients ------------------------------------------
+ * The cell of L is split into pyramids with apex X_L over its facets
+ * (volume h A / 3, h the height of X_L over the facet, signed, so they add
+ * up to V_L for any apex). Pyramids are grouped by the dominant direction of
+ * their outward normal (+x, -x, +y, -y, +z, -z): six sub-cells. The gradient
+ * of sub-cell s is the volume average of grad Psi at the pyramid centroids
+ * (apex + 3/4 (facet centroid - apex)). Linear completeness of grad Psi
+ * (eq. (18)) makes B_s - B_L vanish on every linear field, so the
+ * stabilization keeps the patch test exact, while a checkerboard, invisible
+ * to B_L, has B_s != 0. Row 6 L + s holds B_s - B_L. */
+
+static void pyramid(const struct gsn_model *m, int f, int L, double sign,
+                    double *volume, double *centroid, int *group)
+{
+    double area = 0.0, c[3] = {0, 0, 0};
+    for (int q = m->facet_point_offset[f]; q < m->facet_point_offset[f + 1];
+         ++q) {
+        area += m->facet_weight[q];
+        for (int k = 0; k < 3; ++k)
+            c[k] += m->facet_weight[q] * m->facet_point[3 * (size_t)q + k];
+    }
+    const double *x = m->position + 3 * (size_t)L;
+    const double *nf = m->facet_normal + 3 * (size_t)f;
+    double height = 0.0;
+    int axis = 0;
+    for (int k = 0; k < 3; ++k) {
+        c[k] = area > 0.0 ? c[k] / area : x[k];
+        height += sign * nf[k] * (c[k] - x[k]);
+        if (fabs(nf[k]) > fabs(nf[axis]))
+            axis = k;
+    }
+    *volume = height * area / 3.0;
+    for (int k = 0; k < 3; ++k)
+        centroid[k] = x[k] + 0.75 * (c[k] - x[k]);
+    *group = 2 * axis + (sign * nf[axis] < 0.0);
+}
+
+static int mscni_row(void *context, int row, struct kernel_thread *t)
+{
+    const struct facet_context *c = context;
+    const struct gsn_model *m = c->m;
+    int L = row / 6, s = row % 6, touched = 0;
+    double total = 0.0;
+    for (int e = c->particle_facet_offset[L];
+         e < c->particle_facet_offset[L + 1]; ++e) {
+        int f = c->particle_facet[e], group;
+        double sign = m->facet_owner[f] == L ? 1.0 : -1.0;
+        double volume, centroid[3];
+        pyramid(m, f, L, sign, &volume, centroid, &group);
+        /* pyramids of facets through X_L have no volume */
+        if (group != s || !(volume > 1e-12 * m->volume[L]))
+            continue;
+        int count;
+        int rc = evaluate(c->rk, centroid, 1, t, &count, "sub-cell point", f);
+        if (rc != GSN_OK)
+            return rc;
+        total += volume;
+        for (int n = 0; n < count; ++n) {
+            double v[3] = {t->gradient[3 * n] * volume,
+                           t->gradient[3 * n + 1] * volume,
+                           t->gradient[3 * n + 2] * volume};
+            accumulate(t, &touched, t->index[n], v);
+        }
+    }
+    if (total > 0.0) {
+        /* subtract B_L, scaled by the sub-cell volume like the rest */
+        const struct gsn_shape_rows *b = c->nodal;
+        for (int e = b->offset[L]; e < b->offset[L + 1]; ++e) {
+            double v[3] = {-b->gradient[3 * (size_t)e] * total,
+                           -b->gradient[3 * (size_t)e + 1] * total,
+                           -b->gradient[3 * (size_t)e + 2] * total};
+            accumulate(t, &touched, b->index[e], v);
+        }
+    }
+    if (flush(t, touched, total > 0.0 ? 1.0 / total : 0.0)) {
+        snprintf(t->message, sizeof t->message, "out of memory at row %d", row);
+        return GSN_ERR_MEMORY;
+    }
+    return GSN_OK;
+}
+
+static void mscni_weights(const struct gsn_model *m,
+                          const struct facet_context *c, double coefficient,
+                          double *weight, double *position)
+{
+#pragma omp parallel for schedule(static)
+    for (int L = 0; L < m->particle_count; ++L) {
+        double v[6] = {0}, x[6][3] = {{0}};
+        for (int e = c->particle_facet_offset[L];
+             e < c->particle_facet_offset[L + 1]; ++e) {
+            int f = c->particle_facet[e], group;
+            double sign = m->facet_owner[f] == L ? 1.0 : -1.0;
+            double volume, centroid[3];
+            pyramid(m, f, L, sign, &volume, centroid, &group);
+            if (!(volume > 1e-12 * m->volume[L]))
+                continue;
+            v[group] += volume;
+            for (int k = 0; k < 3; ++k)
+                x[group][k] += volume * centroid[k];
+        }
+        for (int s = 0; s < 6; ++s) {
+            size_t p = 6 * (size_t)L + (size_t)s;
+            weight[p] = coefficient * v[s];
+            for (int k = 0; k < 3; ++k)
+                position[3 * p + k] = v[s] > 0.0
+                                          ? x[s][k] / v[s]
+                                          : m->position[3 * (size_t)L + k];
+        }
+    }
+}
+
+/* ---- Gauss on background cells ----------------------------------------- */
+
+/* Gauss-Legendre on [0, 1]: n points and weights, n = 1..6. */
+static int gauss_rule(int n, double *x, double *w)
+{
+    static const double t[6][6] = {
+        {0.0},
+        {-0.5773502691896257645, 0.5773502691896257645},
+        {-0.7745966692414833770, 0.0, 0.7745966692414833770},
+        {-0.8611363115940525752, -0.3399810435848562648, 0.3399810435848562648,
+         0.8611363115940525752},
+        {-0.9061798459386639928, -0.5384693101056830910, 0.0,
+         0.5384693101056830910, 0.9061798459386639928},
+        {-0.9324695142031520279, -0.6612093864662645137, -0.2386191860831969086,
+         0.2386191860831969086, 0.6612093864662645137, 0.9324695142031520279}};
+    static const double u[6][6] = {
+        {2.0},
+        {1.0, 1.0},
+        {0.5555555555555555556, 0.8888888888888888889, 0.5555555555555555556},
+        {0.3478548451374538574, 0.6521451548625461426, 0.6521451548625461426,
+         0.3478548451374538574},
+        {0.2369268850561890875, 0.4786286704993664680, 0.5688888888888888889,
+         0.4786286704993664680, 0.2369268850561890875},
+        {0.1713244923791703450, 0.3607615730481386076, 0.4679139345726910473,
+         0.4679139345726910473, 0.3607615730481386076, 0.1713244923791703450}};
+    if (n < 1 || n > 6)
+        return 1;
+    for (int i = 0; i < n; ++i) {
+        x[i] = 0.5 * (t[n - 1][i] + 1.0);
+        w[i] = 0.5 * u[n - 1][i];
+    }
+    return 0;
+}
+
+/* Trilinear map of a hexahedron (vertex (i,j,k) at i + 2j + 4k): position
+ * and |det J| at reference point r in [0,1]^3. */
+static void hex_map(const double *v, const double *r, double *x, double *det)
+{
+    double jac[3][3] = {{0}};
+    for (int k = 0; k < 3; ++k)
+        x[k] = 0.0;
+    for (int a = 0; a < 8; ++a) {
+        int b[3] = {a & 1, (a >> 1) & 1, (a >> 2) & 1};
+        double f[3], df[3];
+        for (int d = 0; d < 3; ++d) {
+            f[d] = b[d] ? r[d] : 1.0 - r[d];
+            df[d] = b[d] ? 1.0 : -1.0;
+        }
+        double n = f[0] * f[1] * f[2];
+        double dn[3] = {df[0] * f[1] * f[2], f[0] * df[1] * f[2],
+                        f[0] * f[1] * df[2]};
+        for (int k = 0; k < 3; ++k) {
+            x[k] += n * v[3 * a + k];
+            for (int d = 0; d < 3; ++d)
+                jac[k][d] += dn[d] * v[3 * a + k];
+        }
+    }
+    *det = fabs(jac[0][0] * (jac[1][1] * jac[2][2] - jac[1][2] * jac[2][1]) -
+                jac[0][1] * (jac[1][0] * jac[2][2] - jac[1][2] * jac[2][0]) +
+                jac[0][2] * (jac[1][0] * jac[2][1] - jac[1][1] * jac[2][0]));
+}
+
+/* A tetrahedron (a, b, c, d) as the collapsed hexahedron a, b, c, c, d, d,
+ * d, d (Duffy): barycentric b = r0 (1-r1)(1-r2), c = r1 (1-r2), d = r2. */
+static void tet_as_hex(const struct gsn_model *m, int t, double *v)
+{
+    const int *tet = m->tetrahedra + 4 * (size_t)t;
+    const int corner[8] = {0, 1, 2, 2, 3, 3, 3, 3};
+    for (int a = 0; a < 8; ++a)
+        for (int k = 0; k < 3; ++k)
+            v[3 * a + k] = m->position[3 * (size_t)tet[corner[a]] + k];
+}
+
+static int gauss_points(const struct gsn_model *m, int n,
+                        const double *background, int cell_count,
+                        double **position, double **weight, int *count)
+{
+    double r[6], w[6];
+    GSN_CHECK(gauss_rule(n, r, w) == 0, GSN_ERR_INPUT,
+              "gauss_points %d: only 1 to 6 per direction", n);
+    if (!background)
+        cell_count = m->tetrahedron_count;
+    GSN_CHECK(cell_count > 0, GSN_ERR_INPUT,
+              "Gauss integration needs background cells (the model has no "
+              "tetrahedra)");
+    size_t per = (size_t)n * n * n, total = per * (size_t)cell_count;
+    GSN_CHECK(total < 2147483647u, GSN_ERR_INPUT, "too many Gauss points");
+    *position = malloc(3 * total * sizeof **position);
+    *weight = malloc(total * sizeof **weight);
+    GSN_CHECK(*position && *weight, GSN_ERR_MEMORY,
+              "cannot allocate %zu Gauss points", total);
+#pragma omp parallel for schedule(static)
+    for (int c = 0; c < cell_count; ++c) {
+        double v[24];
+        if (background)
+            memcpy(v, background + 24 * (size_t)c, sizeof v);
+        else
+            tet_as_hex(m, c, v);
+        size_t p = per * (size_t)c;
+        for (int k = 0; k < n; ++k)
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i, ++p) {
+                    double ref[3] = {r[i], r[j], r[k]}, det;
+                    hex_map(v, ref, *position + 3 * p, &det);
+                    (*weight)[p] = w[i] * w[j] * w[k] * det;
+                }
+    }
+    *count = (int)total;
+    return GSN_OK;
+}
+
+/* ---- assembly of the struct --------------------------------------------- */
+
+/* Concatenates b after a into a (gradient rows). */
+static int rows_append(struct gsn_shape_rows *a, struct gsn_shape_rows *b)
+{
+    size_t na = (size_t)a->offset[a->row_count];
+    size_t nb = (size_t)b->offset[b->row_count];
+    GSN_CHECK(na + nb < 2147483647u, GSN_ERR_INPUT, "too many row entries");
+    int *offset = realloc(a->offset, ((size_t)a->row_count + b->row_count + 1) *
+                                         sizeof *offset);
+    GSN_CHECK(offset, GSN_ERR_MEMORY, "cannot grow rows");
+    a->offset = offset;
+    int *index = realloc(a->index, (na + nb + 1) * sizeof *index);
+    GSN_CHECK(index, GSN_ERR_MEMORY, "cannot grow rows");
+    a->index = index;
+    double *grad = realloc(a->gradient, 3 * (na + nb + 1) * sizeof *grad);
+    GSN_CHECK(grad, GSN_ERR_MEMORY, "cannot grow rows");
+    a->gradient = grad;
+    for (int r = 1; r <= b->row_count; ++r)
+        a->offset[a->row_count + r] = (int)na + b->offset[r];
+    memcpy(a->index + na, b->index, nb * sizeof *index);
+    memcpy(a->gradient + 3 * na, b->gradient, 3 * nb * sizeof *grad);
+    a->row_count += b->row_count;
+    gsn_shape_rows_free(b);
+    return GSN_OK;
+}
+
+static int particle_facets(const struct gsn_model *m, int **offset, int **facet)
+{
+    size_t n = (size_t)m->particle_count;
+    *offset = calloc(n + 1, sizeof **offset);
+    *facet = malloc((2 * (size_t)m->facet_count + 1) * sizeof **facet);
+    GSN_CHECK(*offset && *facet, GSN_ERR_MEMORY,
+              "cannot allocate the facets of %zu particles", n);
+    for (int f = 0; f < m->facet_count; ++f) {
+        (*offset)[m->facet_owner[f] + 1]++;
+        if (m->facet_neighbour[f] >= 0)
+            (*offset)[m->facet_neighbour[f] + 1]++;
+    }
+    for (size_t p = 0; p < n; ++p)
+        (*offset)[p + 1] += (*offset)[p];
+    int *fill = malloc((n + 1) * sizeof *fill);
+    GSN_CHECK(fill, GSN_ERR_MEMORY, "cannot allocate %zu ints", n);
+    memcpy(fill, *offset, n * sizeof *fill);
+    for (int f = 0; f < m->facet_count; ++f) { /* ascending facets */
+        (*facet)[fill[m->facet_owner[f]]++] = f;
+        if (m->facet_neighbour[f] >= 0)
+            (*facet)[fill[m->facet_neighbour[f]]++] = f;
+    }
+    free(fill);
+    return GSN_OK;
+}
+
+static int boundary_points(const struct gsn_model *m, struct gsn_quadrature *q)
+{
+    int count = 0;
+    for (int f = 0; f < m->facet_count; ++f)
+        if (m->facet_neighbour[f] < 0)
+            count += m->facet_point_offset[f + 1] - m->facet_point_offset[f];
+    size_t nb = (size_t)count;
+    q->boundary_point_count = count;
+    q->boundary_point_facet = malloc((nb + 1) * sizeof(int));
+    q->boundary_point_position = malloc(3 * (nb + 1) * sizeof(double));
+    q->boundary_point_weight = malloc((nb + 1) * sizeof(double));
+    GSN_CHECK(q->boundary_point_facet && q->boundary_point_position &&
+                  q->boundary_point_weight,
+              GSN_ERR_MEMORY, "cannot allocate %d boundary points", count);
+    int b = 0;
+    for (int f = 0; f < m->facet_count; ++f) {
+        if (m->facet_neighbour[f] >= 0)
+            continue;
+        for (int p = m->facet_point_offset[f]; p < m->facet_point_offset[f + 1];
+             ++p, ++b) {
+            q->boundary_point_facet[b] = f;
+            q->boundary_point_weight[b] = m->facet_weight[p];
+            memcpy(q->boundary_point_position + 3 * (size_t)b,
+                   m->facet_point + 3 * (size_t)p, 3 * sizeof(double));
+        }
+    }
+    return GSN_OK;
+}
+
+static int nodal_points(const struct gsn_model *m, struct gsn_quadrature *q)
+{
+    size_t n = (size_t)m->particle_count;
+    q->point_count = q->main_point_count = m->particle_count;
+    q->point_weight = malloc(n * sizeof(double));
+    q->point_position = malloc(3 * n * sizeof(double));
+    q->point_particle = malloc(n * sizeof(int));
+    GSN_CHECK(q->point_weight && q->point_position && q->point_particle,
+              GSN_ERR_MEMORY, "cannot allocate %zu points", n);
+    memcpy(q->point_weight, m->volume, n * sizeof(double));
+    memcpy(q->point_position, m->position, 3 * n * sizeof(double));
+    for (size_t p = 0; p < n; ++p)
+        q->point_particle[p] = (int)p;
+    return GSN_OK;
+}
+
+static int stabilize(const struct gsn_model *m, struct facet_context *c,
+                     double coefficient, struct gsn_quadrature *q)
+{
+    size_t n = (size_t)m->particle_count, ns = 6 * n, total = n + ns;
+    double *w = realloc(q->point_weight, total * sizeof *w);
+    GSN_CHECK(w, GSN_ERR_MEMORY, "cannot grow points");
+    q->point_weight = w;
+    double *x = realloc(q->point_position, 3 * total * sizeof *x);
+    GSN_CHECK(x, GSN_ERR_MEMORY, "cannot grow points");
+    q->point_position = x;
+    int *owner = realloc(q->point_particle, total * sizeof *owner);
+    GSN_CHECK(owner, GSN_ERR_MEMORY, "cannot grow points");
+    q->point_particle = owner;
+    for (size_t s = 0; s < ns; ++s)
+        owner[n + s] = (int)(s / 6);
+    mscni_weights(m, c, coefficient, w + n, x + 3 * n);
+    struct gsn_shape_rows rows;
+    c->nodal = &q->gradient;
+    GSN_CALL(kernel_rows_build(c->rk, (int)ns, mscni_row, c, 0, 1, &rows));
+    GSN_CALL(rows_append(&q->gradient, &rows));
+    q->point_count = (int)total;
+    return GSN_OK;
+}
+
+static int check_model(const struct gsn_model *m)
+{
+    GSN_CHECK(m->particle_count > 0, GSN_ERR_INPUT,
+              "the model has no particles");
+    for (int p = 0; p < m->particle_count; ++p)
+        GSN_CHECK(m->volume[p] > 0.0, GSN_ERR_INPUT,
+                  "particle %d has nodal volume %g", p, m->volume[p]);
+    return GSN_OK;
+}
+
+static int quadrature_build(const struct gsn_model *m,
+                            const struct gsn_kernel_options *o,
+                            const double *background, int background_count,
+                            struct gsn_quadrature *q)
+{
+    int n = m->particle_count;
+    GSN_CALL(check_model(m));
+    GSN_CHECK(o->stabilization == GSN_STABILIZATION_NONE ||
+                  o->integration != GSN_INTEGRATION_GAUSS,
+              GSN_ERR_INPUT,
+              "stabilization mscni applies to nodal integration (scni or "
+              "dni), not gauss");
+    q->method = o->integration;
+    q->stabilization = o->stabilization;
+    q->particle_count = n;
+    double *spacing = malloc((size_t)n * sizeof *spacing);
+    GSN_CHECK(spacing, GSN_ERR_MEMORY, "cannot allocate %d doubles", n);
+    int rc = gsn_rk_spacing_from_facets(m, spacing);
+    if (rc == GSN_OK)
+        rc = gsn_rk_create(n, m->position, spacing, o->support, o->basis_order,
+                           &q->rk);
+    free(spacing);
+    GSN_CALL(rc);
+
+    /* Psi_I(X_J), with gradients for DNI */
+    int dni = o->integration == GSN_INTEGRATION_DNI;
+    GSN_CALL(
+        gsn_rk_shape_rows(q->rk, n, m->position, dni, &q->particle_values));
+    GSN_CALL(boundary_points(m, q));
+    GSN_CALL(gsn_rk_shape_rows(q->rk, q->boundary_point_count,
+                               q->boundary_point_position, 0,
+                               &q->boundary_values));
+
+    struct facet_context c = {m, q->rk, NULL, NULL, NULL};
+    if (o->integration == GSN_INTEGRATION_GAUSS) {
+        int count = 0;
+        GSN_CALL(gauss_points(m, o->gauss_points, background, background_count,
+                              &q->point_position, &q->point_weight, &count));
+        q->point_count = q->main_point_count = count;
+        q->point_particle = malloc((size_t)(count + 1) * sizeof(int));
+        GSN_CHECK(q->point_particle, GSN_ERR_MEMORY, "cannot allocate points");
+        for (int p = 0; p < count; ++p)
+            q->point_particle[p] = -1;
+        GSN_CALL(gsn_rk_shape_rows(q->rk, count, q->point_position, 1,
+                                   &q->gradient));
+        free(q->gradient.value);
+        q->gradient.value = NULL;
+        return GSN_OK;
+    }
+    GSN_CALL(nodal_points(m, q));
+    int *offset = NULL, *facet = NULL;
+    rc = particle_facets(m, &offset, &facet);
+    c.particle_facet_offset = offset;
+    c.particle_facet = facet;
+    if (rc == GSN_OK && dni) {
+        /* DNI: the gradient rows are the gradients at the particles */
+        struct gsn_shape_rows *g = &q->gradient, *v = &q->particle_values;
+        size_t nnz = (size_t)v->offset[n];
+        g->row_count = n;
+        g->offset = malloc(((size_t)n + 1) * sizeof(int));
+        g->index = malloc((nnz + 1) * sizeof(int));
+        g->gradient = v->gradient;
+        v->gradient = NULL;
+        if (g->offset && g->index) {
+            memcpy(g->offset, v->offset, ((size_t)n + 1) * sizeof(int));
+            memcpy(g->index, v->index, nnz * sizeof(int));
+        } else {
+            rc = gsn_error_raise(GSN_ERR_MEMORY, __FILE__, __LINE__, __func__,
+                                 "cannot allocate DNI rows");
+        }
+    } else if (rc == GSN_OK) {
+        rc = kernel_rows_build(q->rk, n, scni_row, &c, 0, 1, &q->gradient);
+    }
+    if (rc == GSN_OK && o->stabilization == GSN_STABILIZATION_MSCNI)
+        rc = stabilize(m, &c, o->stabilization_coefficient, q);
+    free(offset);
+    free(facet);
+    GSN_CALL(rc);
+    return GSN_OK;
+}
+
+int gsn_quadrature_create(const struct gsn_model *m,
+                          const struct gsn_kernel_options *options,
+                          const double *background_cells,
+                          int background_cell_count,
+                          struct gsn_quadrature **out)
+{
+    *out = NULL;
+    struct gsn_quadrature *q = calloc(1, sizeof *q);
+    GSN_CHECK(q, GSN_ERR_MEMORY, "cannot allocate the quadrature");
+    int rc = quadrature_build(m, options, background_cells,
+                              background_cell_count, q);
+    if (rc != GSN_OK) {
+        gsn_quadrature_destroy(&q);
+        GSN_CALL(rc);
+    }
+    *out = q;
+    return GSN_OK;
+}
