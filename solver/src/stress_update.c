@@ -43,6 +43,22 @@ void gsn_stress_update_rotate(const double rotation[9], double tensor[6])
     }
 }
 
+/* Rotates the stress (unless the model recomputes it from its state) and
+ * every tensor state variable of one point. */
+static void rotate_point(const struct gsn_material_ops *ops, const double Q[9],
+                         double *stress, double *state)
+{
+    if (!ops->stress_from_state)
+        gsn_stress_update_rotate(Q, stress);
+    double *q = state;
+    for (int v = 0; v < ops->state_variable_count; ++v) {
+        const enum gsn_state_kind kind = ops->state_variables[v].kind;
+        if (kind == GSN_STATE_TENSOR)
+            gsn_stress_update_rotate(Q, q);
+        q += (int)kind;
+    }
+}
+
 int gsn_stress_update(const struct gsn_material_model *model, size_t count,
                       const double *restrict gradient_increment,
                       double *restrict stress, double *restrict state,
@@ -56,26 +72,57 @@ int gsn_stress_update(const struct gsn_material_model *model, size_t count,
                              ? count - first
                              : STRESS_UPDATE_BLOCK;
         double *de = strain_increment ? strain_increment + 6 * first : block;
+        double *q = ns ? state + ns * first : state;
         for (size_t i = 0; i < n; ++i) {
-            const size_t p = first + i;
             double Q[9];
-            gsn_stress_update_increment(gradient_increment + 9 * p, de + 6 * i,
-                                        Q);
-            if (!ops->stress_from_state)
-                gsn_stress_update_rotate(Q, stress + 6 * p);
-            double *q = ns ? state + ns * p : NULL;
-            for (int v = 0; v < ops->state_variable_count; ++v) {
-                const enum gsn_state_kind kind = ops->state_variables[v].kind;
-                if (kind == GSN_STATE_TENSOR)
-                    gsn_stress_update_rotate(Q, q);
-                q += (int)kind;
-            }
+            gsn_stress_update_increment(gradient_increment + 9 * (first + i),
+                                        de + 6 * i, Q);
+            rotate_point(ops, Q, stress + 6 * (first + i),
+                         ns ? q + ns * i : NULL);
         }
-        int rc = ops->update(model->context, n, de, stress + 6 * first,
-                             ns ? state + ns * first : state);
+        int rc = ops->update(model->context, n, de, stress + 6 * first, q);
         if (rc != GSN_OK)
             return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
                                   "ops->update(model->context, n, de, ...)");
+    }
+    return GSN_OK;
+}
+
+int gsn_stress_update_split(const struct gsn_material_model *model,
+                            size_t count,
+                            const double *restrict gradient_increment,
+                            double *restrict stress, double *restrict state,
+                            double *restrict strain_increment)
+{
+    const struct gsn_material_ops *ops = model->ops;
+    const size_t ns = (size_t)ops->state_size;
+    double half[6 * STRESS_UPDATE_BLOCK], rotation[9 * STRESS_UPDATE_BLOCK];
+    for (size_t first = 0; first < count; first += STRESS_UPDATE_BLOCK) {
+        const size_t n = count - first < STRESS_UPDATE_BLOCK
+                             ? count - first
+                             : STRESS_UPDATE_BLOCK;
+        double *q = ns ? state + ns * first : state;
+        for (size_t i = 0; i < n; ++i) {
+            double de[6];
+            gsn_stress_update_increment(gradient_increment + 9 * (first + i),
+                                        de, rotation + 9 * i);
+            for (int a = 0; a < 6; ++a) {
+                half[6 * i + a] = 0.5 * de[a];
+                if (strain_increment)
+                    strain_increment[6 * (first + i) + a] = de[a];
+            }
+        }
+        int rc = ops->update(model->context, n, half, stress + 6 * first, q);
+        if (rc != GSN_OK)
+            return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
+                                  "ops->update(model->context, n, half, ...)");
+        for (size_t i = 0; i < n; ++i)
+            rotate_point(ops, rotation + 9 * i, stress + 6 * (first + i),
+                         ns ? q + ns * i : NULL);
+        rc = ops->update(model->context, n, half, stress + 6 * first, q);
+        if (rc != GSN_OK)
+            return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
+                                  "ops->update(model->context, n, half, ...)");
     }
     return GSN_OK;
 }

@@ -47,6 +47,19 @@ int gsn_stress_update(const struct gsn_material_model *model, size_t count,
                       double *restrict stress, double *restrict state,
                       double *restrict strain_increment);
 
+/* A second-order variant (not the paper's): the material step is split
+ * around the rotation, half strain increment, rotation by Q, half strain
+ * increment; for hypoelasticity sigma_{n+1} = Q (sigma_n + C : Delta eps / 2)
+ * Q^T + C : Delta eps / 2 (REFERENCES.md, "Objective update": max error / mu
+ * in simple shear to gamma = pi 1.2e-2, 1.2e-4, 1.2e-6 for N = 10, 100,
+ * 1000). Two material calls per step; e_t still grows by ||Delta eps||.
+ * Same arguments as gsn_stress_update. */
+int gsn_stress_update_split(const struct gsn_material_model *model,
+                            size_t count,
+                            const double *restrict gradient_increment,
+                            double *restrict stress, double *restrict state,
+                            double *restrict strain_increment);
+
 #ifdef __cplusplus
 }
 #endif
