@@ -19,9 +19,9 @@ static inline double fixture_uniform(unsigned long long *s)
 
 /* Adds one rectangular facet: centre c, normal axis d (+1 direction from
  * the owner), half-extents e[3] (e[d] unused), gauss 1 or 2 per direction. */
-static void fixture_facet(struct gsn_model *m, int *f, int *qp, int owner,
-                          int neighbour, int d, double sign, const double *c,
-                          const double *e, int gauss)
+static inline void fixture_facet(struct gsn_model *m, int *f, int *qp,
+                                 int owner, int neighbour, int d, double sign,
+                                 const double *c, const double *e, int gauss)
 {
     int a = (d + 1) % 3, b = (d + 2) % 3;
     m->facet_owner[*f] = owner;
@@ -48,8 +48,8 @@ static void fixture_facet(struct gsn_model *m, int *f, int *qp, int owner,
 }
 
 /* nx x ny x nz particles, spacing h, first particle at the origin. */
-static int fixture_lattice(const int *size, double h, int gauss,
-                           struct gsn_model *m)
+static inline int fixture_lattice(const int *size, double h, int gauss,
+                                  struct gsn_model *m)
 {
     int nx = size[0], ny = size[1], nz = size[2], n = nx * ny * nz;
     /* facets: interior (n_d - 1) per line per direction, 2 per line on the
@@ -98,7 +98,7 @@ static int fixture_lattice(const int *size, double h, int gauss,
 }
 
 /* The lattice cells between particles as background hexahedra. */
-static double *fixture_background(const int *size, double h, int *count)
+static inline double *fixture_background(const int *size, double h, int *count)
 {
     int cx = size[0] - 1, cy = size[1] - 1, cz = size[2] - 1;
     *count = cx * cy * cz;
@@ -117,7 +117,8 @@ static double *fixture_background(const int *size, double h, int *count)
 
 /* Small-strain isotropic elasticity: sigma = lambda tr(eps) I + 2 mu eps
  * with eps = sym(G), G_ij = du_i/dX_j. */
-static void fixture_stress(double lambda, double mu, const double *g, double *s)
+static inline void fixture_stress(double lambda, double mu, const double *g,
+                                  double *s)
 {
     double tr = g[0] + g[4] + g[8];
     for (int i = 0; i < 3; ++i)
@@ -128,9 +129,9 @@ static void fixture_stress(double lambda, double mu, const double *g, double *s)
 
 /* f_int = sum_p B_p^T sigma(B_p d) w_p (3 per particle); linear elastic at
  * every point (main and stabilization). */
-static void fixture_internal_force(const struct gsn_quadrature *q,
-                                   double lambda, double mu, const double *d,
-                                   double *f)
+static inline void fixture_internal_force(const struct gsn_quadrature *q,
+                                          double lambda, double mu,
+                                          const double *d, double *f)
 {
     memset(f, 0, 3 * (size_t)q->particle_count * sizeof *f);
     const struct gsn_shape_rows *r = &q->gradient;
@@ -153,8 +154,8 @@ static void fixture_internal_force(const struct gsn_quadrature *q,
 
 /* The linear patch test: d_I = A X_I + b, exact traction sigma n on the
  * boundary with the facet quadrature. Returns ||f_int - f_ext|| / ||f_ext||. */
-static double fixture_patch_test(const struct gsn_model *m,
-                                 const struct gsn_quadrature *q)
+static inline double fixture_patch_test(const struct gsn_model *m,
+                                        const struct gsn_quadrature *q)
 {
     const double lambda = 21.30e6, mu = 9.15e6; /* the paper's soil */
     const double a[9] = {1.0e-3, 0.4e-3, -0.7e-3, 0.9e-3, -0.5e-3,
@@ -194,6 +195,56 @@ static double fixture_patch_test(const struct gsn_model *m,
     free(f);
     free(g);
     return sqrt(num / den);
+}
+
+/* eq. (23) at every particle and eq. (24) at the particles whose kernel
+ * covers no boundary point; errors relative to 1/h and h^2. */
+static inline void fixture_completeness(const struct gsn_model *m,
+                                        const struct gsn_quadrature *q,
+                                        double h, double *err23, double *err24,
+                                        int *interior)
+{
+    int n = m->particle_count;
+    const struct gsn_shape_rows *r = &q->gradient;
+    *err23 = 0.0;
+    for (int L = 0; L < n; ++L) {
+        double s0[3] = {0}, s1[9] = {0};
+        for (int e = r->offset[L]; e < r->offset[L + 1]; ++e)
+            for (int j = 0; j < 3; ++j) {
+                s0[j] += r->gradient[3 * e + j];
+                for (int k = 0; k < 3; ++k)
+                    s1[3 * j + k] += r->gradient[3 * e + j] *
+                                     m->position[3 * r->index[e] + k];
+            }
+        for (int j = 0; j < 3; ++j) {
+            *err23 = fmax(*err23, fabs(s0[j]) * h);
+            for (int k = 0; k < 3; ++k)
+                *err23 = fmax(*err23, fabs(s1[3 * j + k] - (j == k)));
+        }
+    }
+    /* eq. (24): sum_L grad Psi_I(X_L) V_L for each I */
+    size_t un = n > 0 ? (size_t)n : 1;
+    double *sum = calloc(3 * un, sizeof *sum);
+    int *boundary = calloc(un, sizeof *boundary);
+    for (int L = 0; L < n; ++L)
+        for (int e = r->offset[L]; e < r->offset[L + 1]; ++e)
+            for (int j = 0; j < 3; ++j)
+                sum[3 * r->index[e] + j] +=
+                    r->gradient[3 * e + j] * q->point_weight[L];
+    const struct gsn_shape_rows *b = &q->boundary_values;
+    for (int e = 0; e < b->offset[b->row_count]; ++e)
+        boundary[b->index[e]] = 1;
+    *err24 = 0.0;
+    *interior = 0;
+    for (int i = 0; i < n; ++i) {
+        if (boundary[i])
+            continue;
+        ++*interior;
+        for (int j = 0; j < 3; ++j)
+            *err24 = fmax(*err24, fabs(sum[3 * i + j]) / (h * h));
+    }
+    free(sum);
+    free(boundary);
 }
 
 #endif

@@ -7,55 +7,6 @@
 
 #include <omp.h>
 
-/* eq. (23) at every particle and eq. (24) at the particles whose kernel
- * covers no boundary point; errors relative to 1/h and h^2. */
-static void check_completeness(const struct gsn_model *m,
-                               const struct gsn_quadrature *q, double h,
-                               double *err23, double *err24, int *interior)
-{
-    int n = m->particle_count;
-    const struct gsn_shape_rows *r = &q->gradient;
-    *err23 = 0.0;
-    for (int L = 0; L < n; ++L) {
-        double s0[3] = {0}, s1[9] = {0};
-        for (int e = r->offset[L]; e < r->offset[L + 1]; ++e)
-            for (int j = 0; j < 3; ++j) {
-                s0[j] += r->gradient[3 * e + j];
-                for (int k = 0; k < 3; ++k)
-                    s1[3 * j + k] += r->gradient[3 * e + j] *
-                                     m->position[3 * r->index[e] + k];
-            }
-        for (int j = 0; j < 3; ++j) {
-            *err23 = fmax(*err23, fabs(s0[j]) * h);
-            for (int k = 0; k < 3; ++k)
-                *err23 = fmax(*err23, fabs(s1[3 * j + k] - (j == k)));
-        }
-    }
-    /* eq. (24): sum_L grad Psi_I(X_L) V_L for each I */
-    size_t un = n > 0 ? (size_t)n : 1;
-    double *sum = calloc(3 * un, sizeof *sum);
-    int *boundary = calloc(un, sizeof *boundary);
-    for (int L = 0; L < n; ++L)
-        for (int e = r->offset[L]; e < r->offset[L + 1]; ++e)
-            for (int j = 0; j < 3; ++j)
-                sum[3 * r->index[e] + j] +=
-                    r->gradient[3 * e + j] * q->point_weight[L];
-    const struct gsn_shape_rows *b = &q->boundary_values;
-    for (int e = 0; e < b->offset[b->row_count]; ++e)
-        boundary[b->index[e]] = 1;
-    *err24 = 0.0;
-    *interior = 0;
-    for (int i = 0; i < n; ++i) {
-        if (boundary[i])
-            continue;
-        ++*interior;
-        for (int j = 0; j < 3; ++j)
-            *err24 = fmax(*err24, fabs(sum[3 * i + j]) / (h * h));
-    }
-    free(sum);
-    free(boundary);
-}
-
 static struct gsn_quadrature *build(const struct gsn_model *m,
                                     enum gsn_integration method,
                                     enum gsn_stabilization stab,
@@ -83,7 +34,7 @@ static void check_lattice(int nx, int ny, int nz, int gauss)
         build(&m, GSN_INTEGRATION_SCNI, GSN_STABILIZATION_NONE, NULL, 0);
     double e23, e24;
     int interior;
-    check_completeness(&m, scni, h, &e23, &e24, &interior);
+    fixture_completeness(&m, scni, h, &e23, &e24, &interior);
     double r_scni = fixture_patch_test(&m, scni);
     struct gsn_quadrature *mscni =
         build(&m, GSN_INTEGRATION_SCNI, GSN_STABILIZATION_MSCNI, NULL, 0);
