@@ -166,7 +166,7 @@ static inline double point_mixed_step(struct point *p, double de[6],
                                       const double target[6])
 {
     const double K = PAPER_K, mu = PAPER_MU;
-    int u[6], m = 0;
+    int u[6] = {0}, m = 0;
     for (int a = 0; a < 6; ++a)
         if (stress_controlled[a])
             u[m++] = a;

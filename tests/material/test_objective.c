@@ -155,6 +155,57 @@ static void test_rigid_rotation(void)
     gsn_material_model_destroy(&el);
 }
 
+/* A point loaded onto the yield cone (triaxial compression past yield, so
+ * eps_p > 0 and f = 0) and then rotated rigidly about a skew axis: the
+ * stress rotates, f stays 0, no plastic strain or damage is added. */
+static void test_rotation_of_plastic_state(void)
+{
+    struct gsn_material par = paper_material(1, 1, PAPER_ALPHA);
+    struct gsn_material_model *m = model_make("damage_drucker_prager", &par);
+    struct point p;
+    point_init(&p, m, NULL);
+    for (int n = 0; n < 20; ++n) {
+        const double de[6] = {-1e-3, 2e-4, 3e-4, 1e-4, 0, 0};
+        point_strain_step(&p, de);
+    }
+    const double eps_p = point_state(&p, "equivalent_plastic_strain");
+    const double e_t = point_state(&p, "equivalent_strain");
+    const double zeta = point_state(&p, "damage");
+    const int off = gsn_material_state_offset(m->ops, "effective_stress");
+    double s0[6], sb0[6];
+    memcpy(s0, p.stress, sizeof s0);
+    memcpy(sb0, p.state + off, sizeof sb0);
+    TEST_TRUE(eps_p > 0.0 && zeta > 0.0);
+    TEST_NEAR(yield_function(sb0, PAPER_ALPHA, PAPER_R), 0.0, 1e-9);
+    const double axis[3] = {2.0 / 3.0, -1.0 / 3.0, 2.0 / 3.0};
+    const int N = 100;
+    double G[9];
+    rotation_gradient(axis, 2.0 * M_PI / N, 1, G);
+    double worst = 0.0, worst_f = 0.0;
+    for (int n = 1; n <= N; ++n) {
+        point_gradient_step(&p, G);
+        double R[9], expected[6];
+        rotation_matrix(axis, n * 2.0 * M_PI / N, R);
+        memcpy(expected, s0, sizeof s0);
+        gsn_stress_update_rotate(R, expected);
+        worst = fmax(worst,
+                     stress_distance(p.stress, expected) / gsn_voigt_norm(s0));
+        worst_f = fmax(
+            worst_f, fabs(yield_function(p.state + off, PAPER_ALPHA, PAPER_R)));
+    }
+    printf("rotation of a plastic, damaged state (eps_p %.3e, zeta %.4f): "
+           "stress error %.2e rel., max |f| %.1e Pa\n",
+           eps_p, zeta, worst, worst_f);
+    TEST_TRUE(worst <= 1e-12); /* round-off, as for the elastic prestress */
+    /* f moves with the stress's rotation round-off (<= 1e-12 relative) */
+    TEST_TRUE(worst_f <= 1e-12 * gsn_voigt_norm(sb0));
+    /* a rounding-level f > 0 may trigger a return of round-off size */
+    TEST_NEAR(point_state(&p, "equivalent_plastic_strain"), eps_p, 1e-15);
+    TEST_NEAR(point_state(&p, "equivalent_strain"), e_t, 1e-14);
+    TEST_NEAR(point_state(&p, "damage"), zeta, 1e-12);
+    gsn_material_model_destroy(&m);
+}
+
 /* Hypoelastic simple shear x = X + gamma Y e_x: Delta u = d gamma y e_x on
  * every configuration, so G = d gamma e_x (x) e_y. Returns the max error /
  * mu over the path of the three nonzero components; sigma_zz and the
@@ -289,6 +340,7 @@ int main(void)
 {
     test_begin();
     test_rigid_rotation();
+    test_rotation_of_plastic_state();
     test_simple_shear();
     test_split_variant();
     return test_end("material_objective");
