@@ -576,7 +576,7 @@ static int read_vector3(struct reader *r, const yaml_node_t *node,
 static int read_boundary_entry(struct reader *r, const yaml_node_t *key,
                                const yaml_node_t *node, struct gsn_boundary *b)
 {
-    static const char *const keys[] = {"fix", "velocity", NULL};
+    static const char *const keys[] = {"fix", "velocity", "traction", NULL};
     static const char *const components[] = {"x", "y", "z", NULL};
     snprintf(b->name, sizeof b->name, "%s", scalar_text(key));
     GSN_CHECK(strlen(scalar_text(key)) < GSN_NAME_SIZE, GSN_ERR_INPUT,
@@ -615,6 +615,21 @@ static int read_boundary_entry(struct reader *r, const yaml_node_t *key,
                       "from 'fix'",
                       r->path, node_line(velocity), component_names[k],
                       context);
+    }
+    yaml_node_t *traction = mapping_find(r, node, "traction");
+    if (traction) {
+        char name[GSN_NAME_SIZE + 32];
+        snprintf(name, sizeof name, "%s.traction", context);
+        GSN_CALL(
+            read_vector3(r, traction, name, 0, b->has_traction, b->traction));
+        for (int k = 0; k < 3; ++k)
+            GSN_CHECK(
+                b->traction[k] == 0.0 || !(b->fixed[k] || b->has_velocity[k]),
+                GSN_ERR_INPUT,
+                "%s:%d: component %s of '%s' is prescribed by 'fix' or "
+                "'velocity' and also loaded by 'traction'; a traction "
+                "acts only on free components",
+                r->path, node_line(traction), component_names[k], context);
     }
     return GSN_OK;
 }
@@ -865,7 +880,8 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
         }
         fputs("], velocity: ", out);
         write_components(out, b->has_velocity, b->velocity);
-        fputs("}\n", out);
+        fprintf(out, ", traction: [%.17g, %.17g, %.17g]}\n", b->traction[0],
+                b->traction[1], b->traction[2]);
     }
     if (c->time_step_auto)
         fprintf(out, "time: {end: %.17g, step: auto, safety: %.17g}\n",

@@ -399,11 +399,38 @@ int gsn_h5_read(hid_t loc, const struct gsn_dataset_info *info, size_t rows,
     return GSN_OK;
 }
 
+/* Overwrites an existing dataset of the same shape in place (checkpoints
+ * rewritten at every frame must not grow the file). */
+static int h5_overwrite(hid_t loc, const struct gsn_dataset_info *info,
+                        size_t rows, const void *data)
+{
+    char file[256];
+    size_t stored_rows = 0;
+    hid_t dataset = H5I_INVALID_HID, owned = H5I_INVALID_HID;
+    GSN_CALL(h5_dataset_open(loc, info, &dataset, &stored_rows));
+    hid_t type = h5_memory_type(info->type, &owned);
+    int ok = stored_rows == rows && type >= 0 &&
+             (rows == 0 || H5Dwrite(dataset, type, H5S_ALL, H5S_ALL,
+                                    H5P_DEFAULT, data) >= 0);
+    if (owned >= 0)
+        H5Tclose(owned);
+    H5Dclose(dataset);
+    GSN_CHECK(ok, GSN_ERR_IO,
+              "%s: cannot overwrite dataset '%s' (%zu rows, %zu stored)",
+              h5_file_name(loc, file, sizeof file), info->path, rows,
+              stored_rows);
+    return GSN_OK;
+}
+
 int gsn_h5_write(hid_t loc, const struct gsn_dataset_info *info, size_t rows,
                  const void *data)
 {
     char file[256];
     h5_file_name(loc, file, sizeof file);
+    if (gsn_h5_exists(loc, info->path)) {
+        GSN_CALL(h5_overwrite(loc, info, rows, data));
+        return GSN_OK;
+    }
     GSN_CALL(h5_make_parents(loc, info->path));
     hsize_t dims[2] = {(hsize_t)rows, (hsize_t)info->columns};
     int rank = info->columns == 1 ? 1 : 2;

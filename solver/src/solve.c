@@ -1,13 +1,537 @@
-/* solver: the driver. The time loop is built in issue 5. */
+/* geoscni solve: reads OUTDIR/model.h5, builds the shape functions and the
+ * integration, runs the explicit loop (explicit.h) and writes
+ * OUTDIR/results.h5 (frames and a restart checkpoint) and history.csv
+ * (DESIGN.md, "What a run leaves"). results.h5 is written as
+ * results.h5.part and renamed when the run ends, also when it ends in a
+ * numerical failure, so the frames written so far stay readable. */
+#include "constraint.h"
+#include "explicit.h"
 #include "geoscni/error.h"
+#include "geoscni/files.h"
+#include "geoscni/kernels.h"
+#include "geoscni/model.h"
+#include "geoscni/results.h"
 #include "geoscni/solver.h"
+#include "geoscni/tensor.h"
+#include "material.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+/* A run whose energy balance KE + W_int - W_ext drifts by more than this
+ * fraction of the largest of the three is unstable. Central differences
+ * conserve energy to O(dt^2); a stable run stays far below. */
+#define ENERGY_BALANCE_TOLERANCE 0.05
+/* Steps before the energy check starts (energies start from zero). */
+#define ENERGY_CHECK_FIRST_STEP 20
+
+struct boundary_set {
+    int count;
+    int *particle; /* the particles on the entry's surface */
+};
+
+struct run {
+    const struct gsn_case *c;
+    const struct gsn_solve_options *options;
+    char model_path[GSN_PATH_SIZE];
+    char results_path[GSN_PATH_SIZE];
+    char results_temporary[GSN_PATH_SIZE];
+    char history_path[GSN_PATH_SIZE];
+    char case_name[GSN_PATH_SIZE];
+    struct gsn_model model;
+    struct gsn_quadrature *quadrature;
+    struct gsn_material_model *material;
+    struct gsn_constraints *constraints;
+    struct gsn_explicit *explicit_loop;
+    struct boundary_set boundary[GSN_MAX_BOUNDARIES];
+    struct gsn_frame frame;
+    double *particle_stress;
+    hid_t results;
+    FILE *history;
+    long total_steps;
+    int frame_count;
+    double next_frame_time;
+    int damage_offset, plastic_offset;
+};
+
+static double now_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static void case_name_of(const char *path, char *out, size_t size)
+{
+    const char *slash = strrchr(path, '/');
+    const char *name = slash ? slash + 1 : path;
+    size_t length = strlen(name);
+    const char *dot = strrchr(name, '.');
+    if (dot && (strcmp(dot, ".yaml") == 0 || strcmp(dot, ".yml") == 0))
+        length = (size_t)(dot - name);
+    snprintf(out, size, "%.*s", (int)length, name);
+}
+
+static int build_boundary_sets(struct run *r)
+{
+    const struct gsn_model *m = &r->model;
+    for (int b = 0; b < r->c->boundary_count; ++b) {
+        int surface = gsn_model_find_surface(m, r->c->boundaries[b].name);
+        GSN_CHECK(surface >= 0, GSN_ERR_INPUT,
+                  "%s:%d: boundary '%s' is not a physical surface of %s",
+                  r->c->path, r->c->boundaries[b].line,
+                  r->c->boundaries[b].name, r->model_path);
+        struct boundary_set *set = &r->boundary[b];
+        set->particle = malloc(sizeof(int) * (size_t)(m->particle_count + 1));
+        GSN_CHECK(set->particle, GSN_ERR_MEMORY, "out of memory");
+        for (int p = 0; p < m->particle_count; ++p)
+            for (int e = m->particle_surface_offset[p];
+                 e < m->particle_surface_offset[p + 1]; ++e)
+                if (m->particle_surface[e] == surface) {
+                    set->particle[set->count++] = p;
+                    break;
+                }
+    }
+    return GSN_OK;
+}
+
+/* Fills r->frame from the loop's state at its current time. */
+static void fill_frame(struct run *r)
+{
+    const struct gsn_explicit *e = r->explicit_loop;
+    struct gsn_frame *f = &r->frame;
+    int n = e->particle_count;
+    f->time = e->time;
+    f->step = (int)e->step;
+    gsn_explicit_particle_field(e, e->displacement,
+                                f->field[GSN_FRAME_DISPLACEMENT]);
+    gsn_explicit_particle_field(e, e->velocity, f->field[GSN_FRAME_VELOCITY]);
+    gsn_explicit_particle_stress(e, f->field[GSN_FRAME_STRESS]);
+    for (int j = 0; j < n; ++j) {
+        const double *s = &f->field[GSN_FRAME_STRESS][6 * j];
+        double mean = gsn_voigt_trace(s) / 3.0, dev[6];
+        memcpy(dev, s, sizeof dev);
+        for (int k = 0; k < 3; ++k)
+            dev[k] -= mean;
+        f->field[GSN_FRAME_EQUIVALENT_STRESS][j] =
+            sqrt(1.5) * gsn_voigt_norm(dev);
+        const double *state = &e->state[(size_t)e->state_size * j];
+        f->field[GSN_FRAME_DAMAGE][j] =
+            r->damage_offset >= 0 ? state[r->damage_offset] : 0.0;
+        f->field[GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN][j] =
+            r->plastic_offset >= 0 ? state[r->plastic_offset] : 0.0;
+    }
+}
+
+static int write_history_header(struct run *r)
+{
+    fprintf(r->history, "time,step");
+    for (int b = 0; b < r->c->boundary_count; ++b) {
+        const char *name = r->c->boundaries[b].name;
+        fprintf(r->history, ",%s_ux,%s_uy,%s_uz,%s_fx,%s_fy,%s_fz", name, name,
+                name, name, name, name);
+    }
+    fprintf(r->history,
+            ",kinetic_energy,internal_energy,external_work,max_damage\n");
+    GSN_CHECK(!ferror(r->history), GSN_ERR_IO, "%s: cannot write",
+              r->history_path);
+    return GSN_OK;
+}
+
+/* One history row from the frame just filled (mean u(X_J) over the
+ * surface's particles, reaction summed over them). */
+static int write_history_row(struct run *r)
+{
+    const struct gsn_explicit *e = r->explicit_loop;
+    const double *u = r->frame.field[GSN_FRAME_DISPLACEMENT];
+    fprintf(r->history, "%.9g,%ld", e->time, e->step);
+    for (int b = 0; b < r->c->boundary_count; ++b) {
+        const struct boundary_set *set = &r->boundary[b];
+        double mean[3] = {0, 0, 0}, force[3] = {0, 0, 0};
+        for (int s = 0; s < set->count; ++s)
+            for (int k = 0; k < 3; ++k) {
+                mean[k] += u[3 * set->particle[s] + k];
+                force[k] += e->reaction[3 * set->particle[s] + k];
+            }
+        for (int k = 0; k < 3; ++k)
+            mean[k] = set->count ? mean[k] / set->count : 0.0;
+        fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", mean[0], mean[1],
+                mean[2], force[0], force[1], force[2]);
+    }
+    double max_damage = 0.0;
+    for (int j = 0; j < e->particle_count; ++j)
+        if (r->frame.field[GSN_FRAME_DAMAGE][j] > max_damage)
+            max_damage = r->frame.field[GSN_FRAME_DAMAGE][j];
+    fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g\n", e->kinetic_energy,
+            e->internal_energy, e->external_work, max_damage);
+    fflush(r->history);
+    GSN_CHECK(!ferror(r->history), GSN_ERR_IO, "%s: cannot write",
+              r->history_path);
+    return GSN_OK;
+}
+
+static int write_checkpoint(struct run *r)
+{
+    const struct gsn_explicit *e = r->explicit_loop;
+    hid_t group = H5I_INVALID_HID;
+    GSN_CALL(gsn_h5_group(r->results, GSN_CHECKPOINT_GROUP, &group));
+    int rc = GSN_OK;
+    size_t n = (size_t)e->particle_count;
+    double energy[3] = {e->kinetic_energy, e->internal_energy,
+                        e->external_work};
+    const void *data[GSN_CHECKPOINT_DATASET_COUNT] = {
+        [GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT] = e->displacement,
+        [GSN_CHECKPOINT_COEFFICIENT_VELOCITY] = e->velocity,
+        [GSN_CHECKPOINT_COEFFICIENT_ACCELERATION] = e->acceleration,
+        [GSN_CHECKPOINT_STRESS] = e->stress,
+        [GSN_CHECKPOINT_REACTION] = e->reaction,
+        [GSN_CHECKPOINT_ENERGY] = energy,
+        [GSN_CHECKPOINT_MATERIAL_STATE] = e->state};
+    size_t rows[GSN_CHECKPOINT_DATASET_COUNT] = {
+        n, n, n, (size_t)e->point_count, n, 1, (size_t)e->main_point_count};
+    for (int d = 0; d < GSN_CHECKPOINT_DATASET_COUNT; ++d) {
+        struct gsn_dataset_info info = gsn_checkpoint_datasets[d];
+        if (d == GSN_CHECKPOINT_MATERIAL_STATE) {
+            if (e->state_size == 0)
+                continue;
+            info.columns = e->state_size;
+        }
+        GSN_CALL_GOTO(gsn_h5_write(r->results, &info, rows[d], data[d]), rc,
+                      done);
+    }
+    GSN_CALL_GOTO(gsn_h5_attr_write_double(group, GSN_FRAME_ATTR_TIME, e->time),
+                  rc, done);
+    GSN_CALL_GOTO(
+        gsn_h5_attr_write_int(group, GSN_FRAME_ATTR_STEP, (int)e->step), rc,
+        done);
+    GSN_CHECK_GOTO(H5Fflush(r->results, H5F_SCOPE_GLOBAL) >= 0, rc, GSN_ERR_IO,
+                   done, "%s: cannot flush", r->results_temporary);
+done:
+    gsn_h5_close(&group);
+    return rc;
+}
+
+static int read_checkpoint(struct run *r)
+{
+    struct gsn_explicit *e = r->explicit_loop;
+    GSN_CHECK(gsn_h5_exists(r->results, GSN_CHECKPOINT_GROUP), GSN_ERR_INPUT,
+              "%s: no checkpoint to restart from", r->results_temporary);
+    hid_t group = H5Gopen2(r->results, GSN_CHECKPOINT_GROUP, H5P_DEFAULT);
+    GSN_CHECK(group >= 0, GSN_ERR_IO, "%s: cannot open the checkpoint",
+              r->results_temporary);
+    int rc = GSN_OK, step = 0;
+    size_t n = (size_t)e->particle_count;
+    double energy[3];
+    void *data[GSN_CHECKPOINT_DATASET_COUNT] = {
+        [GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT] = e->displacement,
+        [GSN_CHECKPOINT_COEFFICIENT_VELOCITY] = e->velocity,
+        [GSN_CHECKPOINT_COEFFICIENT_ACCELERATION] = e->acceleration,
+        [GSN_CHECKPOINT_STRESS] = e->stress,
+        [GSN_CHECKPOINT_REACTION] = e->reaction,
+        [GSN_CHECKPOINT_ENERGY] = energy,
+        [GSN_CHECKPOINT_MATERIAL_STATE] = e->state};
+    size_t rows[GSN_CHECKPOINT_DATASET_COUNT] = {
+        n, n, n, (size_t)e->point_count, n, 1, (size_t)e->main_point_count};
+    for (int d = 0; d < GSN_CHECKPOINT_DATASET_COUNT; ++d) {
+        struct gsn_dataset_info info = gsn_checkpoint_datasets[d];
+        if (d == GSN_CHECKPOINT_MATERIAL_STATE) {
+            if (e->state_size == 0)
+                continue;
+            info.columns = e->state_size;
+        }
+        GSN_CALL_GOTO(gsn_h5_read(r->results, &info, rows[d], data[d]), rc,
+                      done);
+    }
+    GSN_CALL_GOTO(gsn_h5_attr_read_int(group, GSN_FRAME_ATTR_STEP, &step), rc,
+                  done);
+    e->step = step;
+    e->time = (double)step * e->dt;
+    e->kinetic_energy = energy[0];
+    e->internal_energy = energy[1];
+    e->external_work = energy[2];
+    GSN_CALL_GOTO(gsn_explicit_refresh(e), rc, done);
+done:
+    gsn_h5_close(&group);
+    return rc;
+}
+
+static int write_output(struct run *r)
+{
+    fill_frame(r);
+    GSN_CALL(write_history_row(r));
+    GSN_CALL(gsn_results_frame_write(r->results, r->frame_count, &r->frame));
+    r->frame_count++;
+    GSN_CALL(write_checkpoint(r));
+    return GSN_OK;
+}
+
+/* The time step: auto (safety x stable) or the case's, refused above the
+ * stable one unless forced. */
+static int choose_time_step(struct run *r)
+{
+    struct gsn_explicit *e = r->explicit_loop;
+    const struct gsn_case *c = r->c;
+    double stable = 0.0;
+    GSN_CALL(gsn_explicit_stable_step(e, &stable));
+    if (c->time_step_auto) {
+        e->dt = c->time_step_safety * stable;
+        if (!r->options->quiet)
+            printf("time step: %.4g s (auto: %.2f x the stable step %.4g s "
+                   "from power iteration on M^-1 K)\n",
+                   e->dt, c->time_step_safety, stable);
+    } else {
+        GSN_CHECK(c->time_step <= stable || r->options->force, GSN_ERR_INPUT,
+                  "%s: time.step = %.4g s is above the stable step %.4g s of "
+                  "this model (power iteration on M^-1 K); use a smaller "
+                  "step, 'step: auto', or --force",
+                  c->path, c->time_step, stable);
+        e->dt = c->time_step;
+        if (!r->options->quiet)
+            printf("time step: %.4g s (the stable step is %.4g s)%s\n", e->dt,
+                   stable, c->time_step > stable ? ", forced" : "");
+    }
+    r->total_steps = (long)ceil(c->time_end / e->dt - 1e-9);
+    return GSN_OK;
+}
+
+static void format_duration(double seconds, char *out, size_t size)
+{
+    if (seconds < 0 || !isfinite(seconds))
+        snprintf(out, size, "?");
+    else if (seconds < 60)
+        snprintf(out, size, "%.0fs", seconds);
+    else if (seconds < 3600)
+        snprintf(out, size, "%dm%02ds", (int)seconds / 60, (int)seconds % 60);
+    else
+        snprintf(out, size, "%dh%02dm", (int)seconds / 3600,
+                 ((int)seconds % 3600) / 60);
+}
+
+static void print_progress(const struct run *r, double started, long first,
+                           int final)
+{
+    const struct gsn_explicit *e = r->explicit_loop;
+    double elapsed = now_seconds() - started;
+    long done = e->step - first;
+    double rate = elapsed > 0 ? done / elapsed : 0.0;
+    double eta = rate > 0 ? (r->total_steps - e->step) / rate : -1.0;
+    char eta_text[32], elapsed_text[32];
+    format_duration(eta, eta_text, sizeof eta_text);
+    format_duration(elapsed, elapsed_text, sizeof elapsed_text);
+    int tty = isatty(STDERR_FILENO);
+    fprintf(stderr,
+            "%sstep %ld/%ld  t = %.4g s  %5.1f%%  %s %s  %.3g particle-steps/s"
+            "%s",
+            tty ? "\r" : "", e->step, r->total_steps, e->time,
+            100.0 * e->step / (double)r->total_steps, final ? "took" : "ETA",
+            final ? elapsed_text : eta_text, rate * e->particle_count,
+            tty && !final ? "   " : "\n");
+    fflush(stderr);
+}
+
+static int check_energy(const struct run *r)
+{
+    const struct gsn_explicit *e = r->explicit_loop;
+    double scale = fmax(fmax(e->kinetic_energy, fabs(e->internal_energy)),
+                        fabs(e->external_work));
+    double balance = e->kinetic_energy + e->internal_energy - e->external_work;
+    GSN_CHECK(e->step < ENERGY_CHECK_FIRST_STEP || scale <= 0.0 ||
+                  fabs(balance) <= ENERGY_BALANCE_TOLERANCE * scale,
+              GSN_ERR_NUMERICAL,
+              "step %ld, t = %.6g s: energy is not conserved (kinetic %.4g J "
+              "+ internal %.4g J - external work %.4g J = %.4g J): the run "
+              "is unstable; reduce time.step",
+              e->step, e->time, e->kinetic_energy, e->internal_energy,
+              e->external_work, balance);
+    return GSN_OK;
+}
+
+static int run_loop(struct run *r)
+{
+    struct gsn_explicit *e = r->explicit_loop;
+    const double every = r->c->output_every;
+    double started = now_seconds(), last_print = started;
+    long first = e->step;
+    int quiet = r->options->quiet;
+    while (e->step < r->total_steps) {
+        GSN_CALL(gsn_explicit_step(e));
+        GSN_CALL(check_energy(r));
+        int last = e->step == r->total_steps;
+        if (e->time >= r->next_frame_time - 0.5 * e->dt || last) {
+            GSN_CALL(write_output(r));
+            while (r->next_frame_time <= e->time + 0.5 * e->dt)
+                r->next_frame_time += every;
+        }
+        double t = now_seconds();
+        if (!quiet && (t - last_print > 0.5 || last) &&
+            (isatty(STDERR_FILENO) || last ||
+             (e->step * 10) / r->total_steps !=
+                 ((e->step - 1) * 10) / r->total_steps)) {
+            print_progress(r, started, first, last);
+            last_print = t;
+        }
+    }
+    return GSN_OK;
+}
+
+/* Opens results and history for a fresh run, or for a restart from the
+ * checkpoint of an earlier run's results (complete or cut short). */
+static int open_outputs(struct run *r)
+{
+    struct gsn_explicit *e = r->explicit_loop;
+    char *case_yaml = NULL;
+    if (!r->options->restart) {
+        GSN_CALL(gsn_case_to_yaml_string(r->c, &case_yaml));
+        int rc = gsn_h5_create(r->results_temporary, GSN_FILE_KIND_RESULTS,
+                               case_yaml, &r->results);
+        free(case_yaml);
+        GSN_CALL(rc);
+        GSN_CALL(gsn_h5_attr_write_string(
+            r->results, GSN_RESULTS_ATTR_CASE_NAME, r->case_name));
+        r->history = fopen(r->history_path, "w");
+        GSN_CHECK(r->history, GSN_ERR_IO, "%s: cannot create", r->history_path);
+        GSN_CALL(write_history_header(r));
+        GSN_CALL(write_output(r)); /* the frame at t = 0 */
+        r->next_frame_time = r->c->output_every;
+        return GSN_OK;
+    }
+    if (access(r->results_path, F_OK) == 0)
+        GSN_CHECK(rename(r->results_path, r->results_temporary) == 0,
+                  GSN_ERR_IO, "cannot rename %s for the restart",
+                  r->results_path);
+    GSN_CALL(gsn_h5_open(r->results_temporary, GSN_FILE_KIND_RESULTS, 1,
+                         &r->results));
+    GSN_CALL(gsn_results_frame_count(r->results, &r->frame_count));
+    GSN_CALL(read_checkpoint(r));
+    r->next_frame_time =
+        (floor(e->time / r->c->output_every + 1e-9) + 1.0) * r->c->output_every;
+    /* Keep the history rows up to the checkpoint, drop any later ones. */
+    FILE *old = fopen(r->history_path, "r");
+    GSN_CHECK(old, GSN_ERR_INPUT, "%s: missing; cannot restart",
+              r->history_path);
+    char temporary[GSN_PATH_SIZE + 8], line[65536];
+    GSN_CALL(gsn_path_temporary(temporary, sizeof temporary, r->history_path));
+    r->history = fopen(temporary, "w");
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(r->history, rc, GSN_ERR_IO, fail, "%s: cannot create",
+                   temporary);
+    int header = 1;
+    while (fgets(line, sizeof line, old)) {
+        if (!header && strtol(strchr(line, ',') ? strchr(line, ',') + 1 : line,
+                              NULL, 10) > e->step)
+            break;
+        fputs(line, r->history);
+        header = 0;
+    }
+    fflush(r->history);
+    GSN_CHECK_GOTO(rename(temporary, r->history_path) == 0, rc, GSN_ERR_IO,
+                   fail, "cannot replace %s", r->history_path);
+fail:
+    fclose(old);
+    return rc;
+}
+
+static void run_free(struct run *r)
+{
+    gsn_explicit_destroy(&r->explicit_loop);
+    gsn_constraints_destroy(&r->constraints);
+    gsn_material_model_destroy(&r->material);
+    gsn_quadrature_destroy(&r->quadrature);
+    gsn_model_free(&r->model);
+    gsn_frame_free(&r->frame);
+    free(r->particle_stress);
+    for (int b = 0; b < GSN_MAX_BOUNDARIES; ++b)
+        free(r->boundary[b].particle);
+    if (r->history)
+        fclose(r->history);
+    gsn_h5_close(&r->results);
+}
+
+static int run_setup(struct run *r)
+{
+    const struct gsn_case *c = r->c;
+    double t0 = now_seconds();
+    GSN_CHECK(access(r->model_path, R_OK) == 0, GSN_ERR_INPUT,
+              "%s: not found; run 'geoscni pre %s -o OUTDIR' first",
+              r->model_path, c->path);
+    GSN_CALL(gsn_model_read(r->model_path, &r->model));
+    GSN_CALL(build_boundary_sets(r));
+    struct gsn_kernel_options kernel;
+    gsn_kernel_options_from_case(c, &kernel);
+    GSN_CALL(
+        gsn_quadrature_create(&r->model, &kernel, NULL, 0, &r->quadrature));
+    GSN_CALL(gsn_material_model_create(gsn_material_name_for_case(&c->material),
+                                       &c->material, &r->material));
+    GSN_CALL(gsn_constraints_create(
+        &r->model, c, &r->quadrature->particle_values, &r->constraints));
+    GSN_CALL(gsn_explicit_create(r->quadrature, r->material, r->constraints, c,
+                                 c->time_step, &r->explicit_loop));
+    for (int b = 0; b < c->boundary_count; ++b)
+        if (c->boundaries[b].has_traction[0])
+            gsn_explicit_add_traction(
+                r->explicit_loop, &r->model,
+                gsn_model_find_surface(&r->model, c->boundaries[b].name),
+                c->boundaries[b].traction);
+    r->damage_offset = gsn_material_state_offset(r->material->ops, "damage");
+    r->plastic_offset = gsn_material_state_offset(r->material->ops,
+                                                  "equivalent_plastic_strain");
+    GSN_CALL(gsn_frame_allocate(&r->frame, r->model.particle_count));
+    GSN_CALL(choose_time_step(r));
+    if (!r->options->quiet)
+        printf("solver: %d particles, %d integration points, %s, %.1f MB of "
+               "shape functions, set up in %.2f s, %ld steps\n",
+               r->model.particle_count, r->quadrature->point_count,
+               gsn_integration_name(c->integration),
+               gsn_quadrature_bytes(r->quadrature) / 1e6, now_seconds() - t0,
+               r->total_steps);
+    return GSN_OK;
+}
 
 int gsn_solve_run(const struct gsn_case *c, const char *outdir,
                   const struct gsn_solve_options *options)
 {
-    (void)options;
-    GSN_CHECK(0, GSN_ERR_INTERNAL,
-              "%s: geoscni solve is not implemented in this build yet "
-              "(output folder %s)",
-              c->path, outdir);
+    struct run *r = calloc(1, sizeof *r);
+    GSN_CHECK(r, GSN_ERR_MEMORY, "out of memory");
+    r->c = c;
+    r->options = options;
+    r->results = H5I_INVALID_HID;
+    if (options->threads > 0)
+        omp_set_num_threads(options->threads);
+    int rc = GSN_OK;
+    GSN_CALL_GOTO(gsn_folder_prepare(outdir), rc, done);
+    GSN_CALL_GOTO(
+        gsn_path_join(r->model_path, sizeof r->model_path, outdir, "model.h5"),
+        rc, done);
+    GSN_CALL_GOTO(gsn_path_join(r->results_path, sizeof r->results_path, outdir,
+                                "results.h5"),
+                  rc, done);
+    GSN_CALL_GOTO(gsn_path_temporary(r->results_temporary,
+                                     sizeof r->results_temporary,
+                                     r->results_path),
+                  rc, done);
+    GSN_CALL_GOTO(gsn_path_join(r->history_path, sizeof r->history_path, outdir,
+                                "history.csv"),
+                  rc, done);
+    case_name_of(c->path, r->case_name, sizeof r->case_name);
+    GSN_CALL_GOTO(run_setup(r), rc, done);
+    GSN_CALL_GOTO(open_outputs(r), rc, done);
+    rc = run_loop(r);
+    if (rc != GSN_OK) /* keep what was written: the frames so far */
+        gsn_error_pass(rc, __FILE__, __LINE__, __func__, "run_loop(r)");
+done:
+    if (r->results >= 0) {
+        gsn_h5_close(&r->results);
+        if (rename(r->results_temporary, r->results_path) != 0 && rc == GSN_OK)
+            rc = gsn_error_raise(GSN_ERR_IO, __FILE__, __LINE__, __func__,
+                                 "cannot rename %s to %s", r->results_temporary,
+                                 r->results_path);
+    }
+    run_free(r);
+    free(r);
+    return rc;
 }

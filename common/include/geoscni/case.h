@@ -40,6 +40,8 @@ struct gsn_boundary {
     int fixed[3];        /* component held at zero displacement */
     int has_velocity[3]; /* component moved at a prescribed velocity */
     double velocity[3];  /* m/s, where has_velocity */
+    int has_traction[3]; /* set when the entry has a traction */
+    double traction[3];  /* dead load per reference area, Pa */
 };
 
 struct gsn_material {

@@ -34,7 +34,8 @@ int gsn_h5_require(hid_t loc, const struct gsn_dataset_info *infos, int count);
 
 /* Writes rows x info->columns values (doubles, ints, or for a string
  * dataset rows fixed-width strings of GSN_H5_STRING_SIZE bytes); creates the
- * groups on its path. */
+ * groups on its path. A dataset that exists with the same shape is
+ * overwritten in place. */
 int gsn_h5_write(hid_t loc, const struct gsn_dataset_info *info, size_t rows,
                  const void *data);
 

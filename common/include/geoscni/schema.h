@@ -114,8 +114,14 @@ struct gsn_dataset_info {
       "RK coefficients of the acceleration")                                   \
     X(GSN_CHECKPOINT_STRESS, "checkpoint/stress", GSN_H5_DOUBLE, 6, "Pa",      \
       "Cauchy stress at the integration points, Voigt xx yy zz xy yz xz")      \
+    X(GSN_CHECKPOINT_REACTION, "checkpoint/reaction", GSN_H5_DOUBLE, 3, "N",   \
+      "reaction M a - f_ext + f_int on the constrained coefficients")          \
     X(GSN_CHECKPOINT_ENERGY, "checkpoint/energy", GSN_H5_DOUBLE, 3, "J",       \
-      "kinetic energy, internal energy and external work (one row)")
+      "kinetic energy, internal energy and external work (one row)")           \
+    X(GSN_CHECKPOINT_MATERIAL_STATE, "checkpoint/material_state",              \
+      GSN_H5_DOUBLE, 0, "various",                                             \
+      "state variables of the material model at the nodal points; columns: "   \
+      "the model's state size, named by the attribute 'names'")
 
 #define GSN_DATASET_ENUM(id, path, type, columns, units, description) id,
 enum gsn_model_dataset {

@@ -73,6 +73,42 @@ static inline double gsn_voigt_norm(const double v[6])
     return sqrt(s);
 }
 
+/* Determinant of a 3x3 row-major matrix. */
+static inline double gsn_matrix_determinant(const double m[9])
+{
+    return m[0] * (m[4] * m[8] - m[5] * m[7]) -
+           m[1] * (m[3] * m[8] - m[5] * m[6]) +
+           m[2] * (m[3] * m[7] - m[4] * m[6]);
+}
+
+/* inverse = m^-1 by cofactors; returns det m (the inverse is undefined
+ * when it is 0). */
+static inline double gsn_matrix_inverse(const double m[9], double inverse[9])
+{
+    double det = gsn_matrix_determinant(m);
+    double s = 1.0 / det;
+    inverse[0] = (m[4] * m[8] - m[5] * m[7]) * s;
+    inverse[1] = (m[2] * m[7] - m[1] * m[8]) * s;
+    inverse[2] = (m[1] * m[5] - m[2] * m[4]) * s;
+    inverse[3] = (m[5] * m[6] - m[3] * m[8]) * s;
+    inverse[4] = (m[0] * m[8] - m[2] * m[6]) * s;
+    inverse[5] = (m[2] * m[3] - m[0] * m[5]) * s;
+    inverse[6] = (m[3] * m[7] - m[4] * m[6]) * s;
+    inverse[7] = (m[1] * m[6] - m[0] * m[7]) * s;
+    inverse[8] = (m[0] * m[4] - m[1] * m[3]) * s;
+    return det;
+}
+
+/* c = a b for 3x3 row-major matrices (c must not alias a or b). */
+static inline void gsn_matrix_multiply(const double a[9], const double b[9],
+                                       double c[9])
+{
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            c[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] +
+                           a[3 * i + 2] * b[6 + j];
+}
+
 #ifdef __cplusplus
 }
 #endif

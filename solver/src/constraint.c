@@ -1,0 +1,250 @@
+/* Exact essential boundary conditions on u(X_J): see constraint.h. */
+#include "constraint.h"
+#include "geoscni/error.h"
+
+#include <klu.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Lambda_c with a condition estimate worse than this cannot be trusted to
+ * impose the boundary values to 1e-8 relative. */
+#define CONSTRAINT_RCOND_LIMIT 1e-12
+
+struct component_constraint {
+    int count;        /* |B_c| */
+    int *particle;    /* B_c, ascending */
+    double *velocity; /* prescribed velocity of each, m/s (0: fixed) */
+    int *row_offset;  /* Lambda_c in CSR (rows J, columns K, both B_c) */
+    int *column;
+    double *entry;
+    double *rhs; /* right-hand side, then solution */
+    klu_common common;
+    klu_symbolic *symbolic;
+    klu_numeric *numeric;
+};
+
+struct gsn_constraints {
+    int particle_count;
+    int *slot[3]; /* slot[c][I]: position of I in B_c, or -1 */
+    struct component_constraint component[3];
+};
+
+static const char component_names[3] = {'x', 'y', 'z'};
+
+void gsn_constraints_destroy(struct gsn_constraints **constraints)
+{
+    if (!constraints || !*constraints)
+        return;
+    struct gsn_constraints *k = *constraints;
+    for (int c = 0; c < 3; ++c) {
+        struct component_constraint *cc = &k->component[c];
+        if (cc->numeric)
+            klu_free_numeric(&cc->numeric, &cc->common);
+        if (cc->symbolic)
+            klu_free_symbolic(&cc->symbolic, &cc->common);
+        free(cc->particle);
+        free(cc->velocity);
+        free(cc->row_offset);
+        free(cc->column);
+        free(cc->entry);
+        free(cc->rhs);
+        free(k->slot[c]);
+    }
+    free(k);
+    *constraints = NULL;
+}
+
+/* Prescriptions per (particle, component): the boundary entry that set it
+ * (-1: none) and its velocity. */
+static int collect_prescriptions(const struct gsn_model *m,
+                                 const struct gsn_case *c, int *entry_of,
+                                 double *velocity_of)
+{
+    int n = m->particle_count;
+    for (int i = 0; i < 3 * n; ++i)
+        entry_of[i] = -1;
+    for (int b = 0; b < c->boundary_count; ++b) {
+        const struct gsn_boundary *entry = &c->boundaries[b];
+        int surface = gsn_model_find_surface(m, entry->name);
+        GSN_CHECK(surface >= 0, GSN_ERR_INPUT,
+                  "%s:%d: boundary '%s' is not a physical surface of the "
+                  "model; name a surface of the geometry (run pre again if "
+                  "the geometry changed)",
+                  c->path, entry->line, entry->name);
+        for (int p = 0; p < n; ++p) {
+            int on_surface = 0;
+            for (int e = m->particle_surface_offset[p];
+                 e < m->particle_surface_offset[p + 1]; ++e)
+                on_surface |= m->particle_surface[e] == surface;
+            if (!on_surface)
+                continue;
+            for (int k = 0; k < 3; ++k) {
+                if (!entry->fixed[k] && !entry->has_velocity[k])
+                    continue;
+                double value = entry->fixed[k] ? 0.0 : entry->velocity[k];
+                int previous = entry_of[3 * p + k];
+                GSN_CHECK(previous < 0 || velocity_of[3 * p + k] == value,
+                          GSN_ERR_INPUT,
+                          "%s:%d: particle %d at (%g, %g, %g) lies on '%s' "
+                          "and '%s', which prescribe different %c "
+                          "velocities (%g and %g m/s); make them agree",
+                          c->path, entry->line, p, m->position[3 * p],
+                          m->position[3 * p + 1], m->position[3 * p + 2],
+                          previous >= 0 ? c->boundaries[previous].name : "",
+                          entry->name, component_names[k],
+                          velocity_of[3 * p + k], value);
+                entry_of[3 * p + k] = b;
+                velocity_of[3 * p + k] = value;
+            }
+        }
+    }
+    return GSN_OK;
+}
+
+static int component_build(struct gsn_constraints *k, int c,
+                           const struct gsn_model *m,
+                           const struct gsn_shape_rows *values,
+                           const int *entry_of, const double *velocity_of)
+{
+    struct component_constraint *cc = &k->component[c];
+    int n = m->particle_count;
+    k->slot[c] = malloc(sizeof(int) * (size_t)(n ? n : 1));
+    GSN_CHECK(k->slot[c], GSN_ERR_MEMORY, "out of memory");
+    for (int p = 0; p < n; ++p) {
+        k->slot[c][p] = entry_of[3 * p + c] >= 0 ? cc->count : -1;
+        cc->count += entry_of[3 * p + c] >= 0;
+    }
+    if (cc->count == 0)
+        return GSN_OK;
+    size_t count = (size_t)cc->count;
+    cc->particle = malloc(sizeof(int) * count);
+    cc->velocity = malloc(sizeof(double) * count);
+    cc->row_offset = calloc(count + 1, sizeof(int));
+    cc->rhs = malloc(sizeof(double) * count);
+    GSN_CHECK(cc->particle && cc->velocity && cc->row_offset && cc->rhs,
+              GSN_ERR_MEMORY, "out of memory");
+    for (int p = 0; p < n; ++p) {
+        int s = k->slot[c][p];
+        if (s < 0)
+            continue;
+        cc->particle[s] = p;
+        cc->velocity[s] = velocity_of[3 * p + c];
+        for (int e = values->offset[p]; e < values->offset[p + 1]; ++e)
+            cc->row_offset[s + 1] += k->slot[c][values->index[e]] >= 0;
+    }
+    for (size_t s = 0; s < count; ++s)
+        cc->row_offset[s + 1] += cc->row_offset[s];
+    size_t entries = (size_t)cc->row_offset[count];
+    cc->column = malloc(sizeof(int) * (entries ? entries : 1));
+    cc->entry = malloc(sizeof(double) * (entries ? entries : 1));
+    GSN_CHECK(cc->column && cc->entry, GSN_ERR_MEMORY, "out of memory");
+    for (size_t s = 0; s < count; ++s) {
+        int p = cc->particle[s], at = cc->row_offset[s];
+        for (int e = values->offset[p]; e < values->offset[p + 1]; ++e) {
+            int column = k->slot[c][values->index[e]];
+            if (column < 0)
+                continue;
+            cc->column[at] = column;
+            cc->entry[at] = values->value[e];
+            at++;
+        }
+    }
+    /* CSR of Lambda is CSC of Lambda^T: KLU factors Lambda^T, and
+     * klu_tsolve then solves Lambda x = b. */
+    klu_defaults(&cc->common);
+    cc->symbolic =
+        klu_analyze(cc->count, cc->row_offset, cc->column, &cc->common);
+    GSN_CHECK(cc->symbolic, GSN_ERR_NUMERICAL,
+              "the %c boundary matrix (%d particles) could not be analysed "
+              "(KLU status %d)",
+              component_names[c], cc->count, cc->common.status);
+    cc->numeric = klu_factor(cc->row_offset, cc->column, cc->entry,
+                             cc->symbolic, &cc->common);
+    GSN_CHECK(cc->numeric && cc->common.status == KLU_OK, GSN_ERR_NUMERICAL,
+              "the %c boundary matrix Psi_K(X_J) of %d constrained particles "
+              "is singular (KLU status %d); check for duplicate boundary "
+              "particles",
+              component_names[c], cc->count, cc->common.status);
+    klu_rcond(cc->symbolic, cc->numeric, &cc->common);
+    GSN_CHECK(cc->common.rcond > CONSTRAINT_RCOND_LIMIT, GSN_ERR_NUMERICAL,
+              "the %c boundary matrix of %d constrained particles is too "
+              "badly conditioned (reciprocal condition %.3g)",
+              component_names[c], cc->count, cc->common.rcond);
+    return GSN_OK;
+}
+
+int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
+                           const struct gsn_shape_rows *values,
+                           struct gsn_constraints **out)
+{
+    *out = NULL;
+    GSN_CHECK(values->row_count == m->particle_count && values->value,
+              GSN_ERR_INTERNAL, "shape values are not one row per particle");
+    size_t n = (size_t)m->particle_count;
+    struct gsn_constraints *k = calloc(1, sizeof *k);
+    int *entry_of = malloc(sizeof(int) * 3 * (n ? n : 1));
+    double *velocity_of = malloc(sizeof(double) * 3 * (n ? n : 1));
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(k && entry_of && velocity_of, rc, GSN_ERR_MEMORY, done,
+                   "out of memory");
+    k->particle_count = m->particle_count;
+    GSN_CALL_GOTO(collect_prescriptions(m, c, entry_of, velocity_of), rc, done);
+    for (int comp = 0; comp < 3; ++comp)
+        GSN_CALL_GOTO(
+            component_build(k, comp, m, values, entry_of, velocity_of), rc,
+            done);
+done:
+    free(entry_of);
+    free(velocity_of);
+    if (rc != GSN_OK)
+        gsn_constraints_destroy(&k);
+    *out = k;
+    return rc;
+}
+
+int gsn_constraints_apply(struct gsn_constraints *constraints,
+                          const struct gsn_shape_rows *values,
+                          enum gsn_constraint_field kind, double time,
+                          double *field)
+{
+    for (int c = 0; c < 3; ++c) {
+        struct component_constraint *cc = &constraints->component[c];
+        if (cc->count == 0)
+            continue;
+        const int *slot = constraints->slot[c];
+        for (int s = 0; s < cc->count; ++s) {
+            int p = cc->particle[s];
+            double target = kind == GSN_FIELD_DISPLACEMENT
+                                ? cc->velocity[s] * time
+                            : kind == GSN_FIELD_VELOCITY ? cc->velocity[s]
+                                                         : 0.0;
+            for (int e = values->offset[p]; e < values->offset[p + 1]; ++e) {
+                int i = values->index[e];
+                if (slot[i] < 0)
+                    target -= values->value[e] * field[3 * i + c];
+            }
+            cc->rhs[s] = target;
+        }
+        int ok = klu_tsolve(cc->symbolic, cc->numeric, cc->count, 1, cc->rhs,
+                            &cc->common);
+        GSN_CHECK(ok, GSN_ERR_NUMERICAL,
+                  "the %c boundary solve failed (KLU status %d)",
+                  component_names[c], cc->common.status);
+        for (int s = 0; s < cc->count; ++s)
+            field[3 * cc->particle[s] + c] = cc->rhs[s];
+    }
+    return GSN_OK;
+}
+
+int gsn_constraints_is_constrained(const struct gsn_constraints *constraints,
+                                   int particle, int component)
+{
+    return constraints->slot[component] &&
+           constraints->slot[component][particle] >= 0;
+}
+
+int gsn_constraints_count(const struct gsn_constraints *constraints)
+{
+    return constraints->component[0].count + constraints->component[1].count +
+           constraints->component[2].count;
+}

@@ -1,0 +1,63 @@
+/* Essential boundary conditions imposed exactly on the displacement of the
+ * boundary particles, u_c(X_J) = sum_I Psi_I(X_J) d_Ic (DESIGN.md,
+ * "Essential boundary conditions"): RK shape functions do not interpolate,
+ * so fixing d_J would not fix u(X_J).
+ *
+ * For each component c, B_c is the set of particles with c constrained and
+ * Lambda_c[J][K] = Psi_K(X_J) for J, K in B_c, factorized once (KLU). After
+ * each unconstrained update, the coefficients of B_c alone are corrected so
+ * that sum_I Psi_I(X_J) f_Ic equals the prescribed value at every J in B_c:
+ * the mixed transformation of Chen & Wang (2000) restricted to the boundary.
+ * The same correction is applied to displacements, velocities and
+ * accelerations. */
+#ifndef GEOSCNI_CONSTRAINT_H
+#define GEOSCNI_CONSTRAINT_H
+
+#include "geoscni/case.h"
+#include "geoscni/kernels.h"
+#include "geoscni/model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct gsn_constraints;
+
+/* What a field is, for the prescribed value of a velocity boundary at time
+ * t: displacement v t, velocity v, acceleration 0; fixed components are 0
+ * for all three. */
+enum gsn_constraint_field {
+    GSN_FIELD_DISPLACEMENT,
+    GSN_FIELD_VELOCITY,
+    GSN_FIELD_ACCELERATION
+};
+
+/* Collects the constrained particles of every boundary entry of the case
+ * (each entry must name a surface of the model), checks that no particle
+ * gets two different prescriptions for one component, and factorizes
+ * Lambda_c. values: Psi_I(X_J), one row per particle J. */
+int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
+                           const struct gsn_shape_rows *values,
+                           struct gsn_constraints **out);
+
+/* Frees; NULL-safe, nulls the handle. */
+void gsn_constraints_destroy(struct gsn_constraints **constraints);
+
+/* Corrects field (n x 3 coefficients) in place so that the prescribed
+ * values hold at time t at every constrained particle. */
+int gsn_constraints_apply(struct gsn_constraints *constraints,
+                          const struct gsn_shape_rows *values,
+                          enum gsn_constraint_field kind, double time,
+                          double *field);
+
+/* 1 if component k of particle I is constrained. */
+int gsn_constraints_is_constrained(const struct gsn_constraints *constraints,
+                                   int particle, int component);
+
+/* Number of constrained (particle, component) pairs. */
+int gsn_constraints_count(const struct gsn_constraints *constraints);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

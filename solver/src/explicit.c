@@ -1,0 +1,565 @@
+/* The explicit loop: see explicit.h for the algorithm and equations. */
+#include "explicit.h"
+#include "geoscni/error.h"
+#include "geoscni/tensor.h"
+#include "stress_update.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Points per batch of the material update. */
+enum { CHUNK = 64 };
+/* Doubles of per-thread work per batch: G, strain increment, old stress,
+ * new F, mid-step determinant. */
+enum { CHUNK_WORK = CHUNK * (9 + 6 + 6 + 9 + 1) };
+/* Power iterations of the stable-step estimate; the Rayleigh quotient is
+ * within 1% of lambda_max well before this on the bodies tested. */
+enum { POWER_ITERATIONS = 200 };
+
+static int alloc_array(void **array, size_t count, size_t size)
+{
+    *array = calloc(count ? count : 1, size);
+    GSN_CHECK(*array != NULL, GSN_ERR_MEMORY,
+              "cannot allocate %zu values of %zu bytes", count, size);
+    return GSN_OK;
+}
+
+void gsn_explicit_destroy(struct gsn_explicit **handle)
+{
+    if (!handle || !*handle)
+        return;
+    struct gsn_explicit *e = *handle;
+    double *arrays[] = {e->mass,
+                        e->displacement,
+                        e->velocity,
+                        e->acceleration,
+                        e->f_ext,
+                        e->f_int,
+                        e->reaction,
+                        e->stress,
+                        e->state,
+                        e->deformation,
+                        e->previous_displacement,
+                        e->previous_external,
+                        e->new_acceleration,
+                        e->piola,
+                        e->point_energy,
+                        e->thread_work};
+    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
+        free(arrays[i]);
+    free(e->point_failed);
+    free(e->transpose_offset);
+    free(e->transpose_point);
+    free(e->transpose_entry);
+    free(e);
+    *handle = NULL;
+}
+
+/* For each particle I, the (point, entry) pairs of the gradient rows that
+ * hold I, in ascending point order. */
+static int build_transpose(struct gsn_explicit *e)
+{
+    const struct gsn_shape_rows *g = &e->quadrature->gradient;
+    size_t n = (size_t)e->particle_count;
+    size_t entries = (size_t)g->offset[g->row_count];
+    GSN_CALL(alloc_array((void **)&e->transpose_offset, n + 1, sizeof(int)));
+    GSN_CALL(alloc_array((void **)&e->transpose_point, entries, sizeof(int)));
+    GSN_CALL(alloc_array((void **)&e->transpose_entry, entries, sizeof(int)));
+    for (size_t k = 0; k < entries; ++k)
+        e->transpose_offset[g->index[k] + 1]++;
+    for (size_t i = 0; i < n; ++i)
+        e->transpose_offset[i + 1] += e->transpose_offset[i];
+    int *fill = NULL;
+    GSN_CALL(alloc_array((void **)&fill, n, sizeof(int)));
+    memcpy(fill, e->transpose_offset, n * sizeof(int));
+    for (int p = 0; p < g->row_count; ++p) {
+        for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
+            int at = fill[g->index[k]]++;
+            e->transpose_point[at] = p;
+            e->transpose_entry[at] = k;
+        }
+    }
+    free(fill);
+    return GSN_OK;
+}
+
+/* m_I = rho0 sum_L Psi_I(X_L) V_L (eq. (28)), f_ext_I = m_I g. */
+static int build_mass(struct gsn_explicit *e, const struct gsn_case *c)
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    const struct gsn_shape_rows *values = &q->particle_values;
+    GSN_CHECK(values->row_count == e->particle_count && values->value,
+              GSN_ERR_INTERNAL, "shape values are not one row per particle");
+    /* Nodal point l is particle l with weight V_l (SCNI, DNI). */
+    for (int l = 0; l < e->particle_count; ++l) {
+        double volume = q->point_weight[l];
+        for (int k = values->offset[l]; k < values->offset[l + 1]; ++k)
+            e->mass[values->index[k]] +=
+                c->material.density * values->value[k] * volume;
+    }
+    for (int i = 0; i < e->particle_count; ++i) {
+        GSN_CHECK(e->mass[i] > 0.0 && isfinite(e->mass[i]), GSN_ERR_NUMERICAL,
+                  "the lumped mass of particle %d at (%g, %g, %g) is %g kg, "
+                  "not positive: the kernel support is too small or too "
+                  "large for the particle spacing",
+                  i, q->rk->position[3 * i], q->rk->position[3 * i + 1],
+                  q->rk->position[3 * i + 2], e->mass[i]);
+        for (int k = 0; k < 3; ++k)
+            e->f_ext[3 * i + k] = e->mass[i] * c->gravity[k];
+    }
+    return GSN_OK;
+}
+
+int gsn_explicit_create(const struct gsn_quadrature *quadrature,
+                        const struct gsn_material_model *material,
+                        struct gsn_constraints *constraints,
+                        const struct gsn_case *c, double dt,
+                        struct gsn_explicit **out)
+{
+    *out = NULL;
+    GSN_CHECK(quadrature->method != GSN_INTEGRATION_GAUSS, GSN_ERR_INPUT,
+              "%s: the explicit solver runs with integration scni or dni; "
+              "gauss is for the kernel comparisons only",
+              c->path);
+    struct gsn_explicit *e = calloc(1, sizeof *e);
+    GSN_CHECK(e, GSN_ERR_MEMORY, "out of memory");
+    int rc = GSN_OK;
+    e->quadrature = quadrature;
+    e->material = material;
+    e->constraints = constraints;
+    e->particle_count = quadrature->particle_count;
+    e->point_count = quadrature->point_count;
+    e->main_point_count = quadrature->main_point_count;
+    e->state_size = material->ops->state_size;
+    e->bulk_modulus = c->material.bulk_modulus;
+    e->shear_modulus = c->material.shear_modulus;
+    e->dt = dt;
+    e->thread_count = omp_get_max_threads();
+    size_t n3 = 3 * (size_t)e->particle_count;
+    size_t points = (size_t)e->point_count;
+    size_t main = (size_t)e->main_point_count;
+    struct {
+        void **array;
+        size_t count, size;
+    } arrays[] = {
+        {(void **)&e->mass, n3 / 3, sizeof(double)},
+        {(void **)&e->displacement, n3, sizeof(double)},
+        {(void **)&e->velocity, n3, sizeof(double)},
+        {(void **)&e->acceleration, n3, sizeof(double)},
+        {(void **)&e->f_ext, n3, sizeof(double)},
+        {(void **)&e->f_int, n3, sizeof(double)},
+        {(void **)&e->reaction, n3, sizeof(double)},
+        {(void **)&e->stress, 6 * points, sizeof(double)},
+        {(void **)&e->state, main * (size_t)e->state_size, sizeof(double)},
+        {(void **)&e->deformation, 9 * main, sizeof(double)},
+        {(void **)&e->previous_displacement, n3, sizeof(double)},
+        {(void **)&e->previous_external, n3, sizeof(double)},
+        {(void **)&e->new_acceleration, n3, sizeof(double)},
+        {(void **)&e->piola, 9 * points, sizeof(double)},
+        {(void **)&e->point_energy, points, sizeof(double)},
+        {(void **)&e->point_failed, points, sizeof(int)},
+        {(void **)&e->thread_work, (size_t)e->thread_count * CHUNK_WORK,
+         sizeof(double)},
+    };
+    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
+        GSN_CALL_GOTO(
+            alloc_array(arrays[i].array, arrays[i].count, arrays[i].size), rc,
+            fail);
+    GSN_CALL_GOTO(build_transpose(e), rc, fail);
+    GSN_CALL_GOTO(build_mass(e, c), rc, fail);
+    GSN_CALL_GOTO(gsn_material_initialize(material, main, e->stress, e->state),
+                  rc, fail);
+    GSN_CALL_GOTO(gsn_explicit_refresh(e), rc, fail);
+    *out = e;
+    return GSN_OK;
+fail:
+    gsn_explicit_destroy(&e);
+    return rc;
+}
+
+void gsn_explicit_add_traction(struct gsn_explicit *e,
+                               const struct gsn_model *m, int surface,
+                               const double traction[3])
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    const struct gsn_shape_rows *values = &q->boundary_values;
+    for (int b = 0; b < q->boundary_point_count; ++b) {
+        if (m->facet_surface[q->boundary_point_facet[b]] != surface)
+            continue;
+        double w = q->boundary_point_weight[b];
+        for (int k = values->offset[b]; k < values->offset[b + 1]; ++k)
+            for (int c = 0; c < 3; ++c)
+                e->f_ext[3 * values->index[k] + c] +=
+                    values->value[k] * traction[c] * w;
+    }
+    for (int i = 0; i < 3 * e->particle_count; ++i)
+        e->previous_external[i] = e->f_ext[i] + e->reaction[i];
+}
+
+/* F_p = I + sum_I d_I (x) g_pI (eq. (21)). */
+static void point_deformation(const struct gsn_shape_rows *g, int p,
+                              const double *d, double F[9])
+{
+    for (int a = 0; a < 9; ++a)
+        F[a] = (a % 4 == 0) ? 1.0 : 0.0;
+    for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
+        const double *u = &d[3 * g->index[k]];
+        const double *grad = &g->gradient[3 * k];
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                F[3 * i + j] += u[i] * grad[j];
+    }
+}
+
+int gsn_explicit_refresh(struct gsn_explicit *e)
+{
+    const struct gsn_shape_rows *g = &e->quadrature->gradient;
+#pragma omp parallel for schedule(static)
+    for (int p = 0; p < e->main_point_count; ++p)
+        point_deformation(g, p, e->displacement, &e->deformation[9 * p]);
+    for (int i = 0; i < 3 * e->particle_count; ++i)
+        e->previous_external[i] = e->f_ext[i] + e->reaction[i];
+    return GSN_OK;
+}
+
+/* Small-strain elastic stress of the strain eps (Voigt, tensor shear). */
+static void elastic_stress(double bulk, double shear, const double eps[6],
+                           double sigma[6])
+{
+    double volumetric = (bulk - 2.0 * shear / 3.0) * gsn_voigt_trace(eps);
+    for (int a = 0; a < 6; ++a)
+        sigma[a] = 2.0 * shear * eps[a] + (a < 3 ? volumetric : 0.0);
+}
+
+/* Symmetric part of sum_I u_I (x) g_pI, Voigt (tensor shear). */
+static void point_strain(const struct gsn_shape_rows *g, int p, const double *u,
+                         double eps[6])
+{
+    double H[9];
+    point_deformation(g, p, u, H);
+    H[0] -= 1.0;
+    H[4] -= 1.0;
+    H[8] -= 1.0;
+    gsn_matrix_sym_to_voigt(H, eps);
+}
+
+/* P = J sigma F^-T w, from F (9) and sigma (Voigt). */
+static void point_piola(const double F[9], const double sigma[6], double w,
+                        double P[9])
+{
+    double Finv[9], S[9];
+    double J = gsn_matrix_inverse(F, Finv);
+    gsn_voigt_to_matrix(sigma, S);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            P[3 * i + j] =
+                J * w *
+                (S[3 * i] * Finv[3 * j] + S[3 * i + 1] * Finv[3 * j + 1] +
+                 S[3 * i + 2] * Finv[3 * j + 2]);
+}
+
+static double voigt_contract(const double a[6], const double b[6])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] +
+           2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
+}
+
+/* Pass 1 on one batch of main points [p0, p1). */
+static int pass_main_batch(struct gsn_explicit *e, int p0, int p1, double *work)
+{
+    const struct gsn_shape_rows *g = &e->quadrature->gradient;
+    const double *w = e->quadrature->point_weight;
+    double *G = work, *deps = G + 9 * CHUNK, *old = deps + 6 * CHUNK;
+    double *Fnew = old + 6 * CHUNK, *Jmid = Fnew + 9 * CHUNK;
+    int failed = 0;
+    for (int p = p0; p < p1; ++p) {
+        int b = p - p0;
+        double *F1 = &Fnew[9 * b], Fmid[9], Fmid_inv[9], dH[9];
+        const double *F0 = &e->deformation[9 * p];
+        point_deformation(g, p, e->displacement, F1);
+        for (int a = 0; a < 9; ++a) {
+            Fmid[a] = 0.5 * (F0[a] + F1[a]);
+            dH[a] = F1[a] - F0[a];
+        }
+        Jmid[b] = gsn_matrix_inverse(Fmid, Fmid_inv);
+        double J1 = gsn_matrix_determinant(F1);
+        if (!(J1 > 0.0) || !(Jmid[b] > 0.0) || !isfinite(J1)) {
+            e->point_failed[p] = 1;
+            failed = 1;
+            Jmid[b] = 1.0;
+            memset(&G[9 * b], 0, 9 * sizeof(double));
+            continue;
+        }
+        gsn_matrix_multiply(dH, Fmid_inv, &G[9 * b]);
+        memcpy(&old[6 * b], &e->stress[6 * p], 6 * sizeof(double));
+    }
+    if (failed)
+        return GSN_ERR_NUMERICAL;
+    int rc =
+        gsn_stress_update(e->material, (size_t)(p1 - p0), G, &e->stress[6 * p0],
+                          &e->state[(size_t)e->state_size * p0], deps);
+    if (rc != GSN_OK) {
+        for (int p = p0; p < p1; ++p)
+            e->point_failed[p] = 1;
+        return rc;
+    }
+    for (int p = p0; p < p1; ++p) {
+        int b = p - p0;
+        double mean[6];
+        for (int a = 0; a < 6; ++a)
+            mean[a] = 0.5 * (old[6 * b + a] + e->stress[6 * p + a]);
+        /* Internal work sigma : d eps over the mid-step volume. */
+        e->point_energy[p] =
+            voigt_contract(mean, &deps[6 * b]) * Jmid[b] * w[p];
+        point_piola(&Fnew[9 * b], &e->stress[6 * p], w[p], &e->piola[9 * p]);
+        memcpy(&e->deformation[9 * p], &Fnew[9 * b], 9 * sizeof(double));
+    }
+    return GSN_OK;
+}
+
+/* Pass 1 on a stabilization point: linear elastic stress of its row (Puso
+ * et al. 2008), which vanishes for every linear displacement field. */
+static void pass_stabilization_point(struct gsn_explicit *e, int p)
+{
+    const struct gsn_shape_rows *g = &e->quadrature->gradient;
+    double w = e->quadrature->point_weight[p];
+    double eps[6], sigma[6], deps[6], old[6];
+    point_strain(g, p, e->displacement, eps);
+    point_strain(g, p, e->previous_displacement, deps);
+    for (int a = 0; a < 6; ++a)
+        deps[a] = eps[a] - deps[a];
+    memcpy(old, &e->stress[6 * p], sizeof old);
+    elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
+    memcpy(&e->stress[6 * p], sigma, sizeof sigma);
+    double mean[6];
+    for (int a = 0; a < 6; ++a)
+        mean[a] = 0.5 * (old[a] + sigma[a]);
+    e->point_energy[p] = voigt_contract(mean, deps) * w;
+    double *P = &e->piola[9 * p];
+    gsn_voigt_to_matrix(sigma, P);
+    for (int a = 0; a < 9; ++a)
+        P[a] *= w;
+}
+
+/* f_I = sum over the points whose row holds I of P_p g_pI. */
+static void gather_forces(const struct gsn_explicit *e, double *force)
+{
+    const struct gsn_shape_rows *g = &e->quadrature->gradient;
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < e->particle_count; ++i) {
+        double f[3] = {0.0, 0.0, 0.0};
+        for (int t = e->transpose_offset[i]; t < e->transpose_offset[i + 1];
+             ++t) {
+            const double *P = &e->piola[9 * e->transpose_point[t]];
+            const double *grad = &g->gradient[3 * e->transpose_entry[t]];
+            for (int a = 0; a < 3; ++a)
+                f[a] += P[3 * a] * grad[0] + P[3 * a + 1] * grad[1] +
+                        P[3 * a + 2] * grad[2];
+        }
+        memcpy(&force[3 * i], f, sizeof f);
+    }
+}
+
+/* The lowest failed point, as a message naming step, time and particle. */
+static int report_failure(const struct gsn_explicit *e, const char *what)
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    for (int p = 0; p < e->point_count; ++p) {
+        if (!e->point_failed[p])
+            continue;
+        int particle = q->point_particle ? q->point_particle[p] : -1;
+        const double *x = &q->point_position[3 * p];
+        double J = p < e->main_point_count
+                       ? gsn_matrix_determinant(&e->deformation[9 * p])
+                       : NAN;
+        return gsn_error_raise(
+            GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
+            "step %ld, t = %.6g s: %s at particle %d (reference position "
+            "%g, %g, %g; det F before the step %.3g); the particle is "
+            "inverted or the step is unstable: reduce time.step or check "
+            "the boundary conditions",
+            e->step + 1, (e->step + 1) * e->dt, what, particle, x[0], x[1],
+            x[2], J);
+    }
+    return GSN_OK;
+}
+
+int gsn_explicit_step(struct gsn_explicit *e)
+{
+    const double dt = e->dt;
+    const double t1 = (double)(e->step + 1) * dt;
+    const int n3 = 3 * e->particle_count;
+    memcpy(e->previous_displacement, e->displacement, n3 * sizeof(double));
+    for (int i = 0; i < n3; ++i) /* eq. (33) */
+        e->displacement[i] +=
+            dt * e->velocity[i] + 0.5 * dt * dt * e->acceleration[i];
+    if (e->constraints)
+        GSN_CALL(gsn_constraints_apply(
+            e->constraints, &e->quadrature->particle_values,
+            GSN_FIELD_DISPLACEMENT, t1, e->displacement));
+
+    /* Pass 1: kinematics and stress at every point. */
+    int failed = 0;
+    int batches = (e->main_point_count + CHUNK - 1) / CHUNK;
+    memset(e->point_failed, 0, sizeof(int) * (size_t)e->point_count);
+#pragma omp parallel for schedule(dynamic, 4) reduction(| : failed)
+    for (int b = 0; b < batches; ++b) {
+        int p0 = b * CHUNK;
+        int p1 =
+            p0 + CHUNK < e->main_point_count ? p0 + CHUNK : e->main_point_count;
+        double *work =
+            &e->thread_work[(size_t)omp_get_thread_num() * CHUNK_WORK];
+        failed |= pass_main_batch(e, p0, p1, work) != GSN_OK;
+    }
+#pragma omp parallel for schedule(static)
+    for (int p = e->main_point_count; p < e->point_count; ++p)
+        pass_stabilization_point(e, p);
+    if (failed) {
+        GSN_CALL(report_failure(e, "det F <= 0 or the material update failed"));
+        GSN_CHECK(0, GSN_ERR_NUMERICAL, "step %ld: the stress update failed",
+                  e->step + 1);
+    }
+
+    /* Pass 2: internal force and acceleration at every particle. */
+    gather_forces(e, e->f_int);
+    double *a1 = e->new_acceleration;
+    for (int i = 0; i < e->particle_count; ++i)
+        for (int k = 0; k < 3; ++k) /* eq. (32) */
+            a1[3 * i + k] =
+                (e->f_ext[3 * i + k] - e->f_int[3 * i + k]) / e->mass[i];
+    if (e->constraints)
+        GSN_CALL(gsn_constraints_apply(e->constraints,
+                                       &e->quadrature->particle_values,
+                                       GSN_FIELD_ACCELERATION, t1, a1));
+    for (int i = 0; i < n3; ++i) { /* eq. (34) */
+        e->velocity[i] += 0.5 * dt * (e->acceleration[i] + a1[i]);
+        e->acceleration[i] = a1[i];
+    }
+    if (e->constraints)
+        GSN_CALL(gsn_constraints_apply(e->constraints,
+                                       &e->quadrature->particle_values,
+                                       GSN_FIELD_VELOCITY, t1, e->velocity));
+
+    /* Reactions, energies, and a check that everything is finite. */
+    double kinetic = 0.0, internal = 0.0, external = 0.0;
+    for (int i = 0; i < e->particle_count; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            int at = 3 * i + k;
+            int constrained = e->constraints && gsn_constraints_is_constrained(
+                                                    e->constraints, i, k);
+            e->reaction[at] = constrained ? e->mass[i] * e->acceleration[at] -
+                                                e->f_ext[at] + e->f_int[at]
+                                          : 0.0;
+            double total = e->f_ext[at] + e->reaction[at];
+            external += 0.5 * (e->previous_external[at] + total) *
+                        (e->displacement[at] - e->previous_displacement[at]);
+            e->previous_external[at] = total;
+            kinetic += 0.5 * e->mass[i] * e->velocity[at] * e->velocity[at];
+        }
+        if (!isfinite(e->velocity[3 * i] + e->velocity[3 * i + 1] +
+                      e->velocity[3 * i + 2]))
+            GSN_CHECK(0, GSN_ERR_NUMERICAL,
+                      "step %ld, t = %.6g s: the velocity of particle %d is "
+                      "not finite; the step is unstable: reduce time.step",
+                      e->step + 1, t1, i);
+    }
+    for (int p = 0; p < e->point_count; ++p)
+        internal += e->point_energy[p];
+    e->kinetic_energy = kinetic;
+    e->internal_energy += internal;
+    e->external_work += external;
+    e->step++;
+    e->time = (double)e->step * dt;
+    return GSN_OK;
+}
+
+/* y = K x of the linear elastic system at the reference configuration. */
+static void apply_stiffness(struct gsn_explicit *e, const double *x, double *y)
+{
+    const struct gsn_shape_rows *g = &e->quadrature->gradient;
+    const double *w = e->quadrature->point_weight;
+#pragma omp parallel for schedule(static)
+    for (int p = 0; p < e->point_count; ++p) {
+        double eps[6], sigma[6];
+        point_strain(g, p, x, eps);
+        elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
+        double *P = &e->piola[9 * p];
+        gsn_voigt_to_matrix(sigma, P);
+        for (int a = 0; a < 9; ++a)
+            P[a] *= w[p];
+    }
+    gather_forces(e, y);
+}
+
+int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt)
+{
+    const int n = e->particle_count;
+    double *x = NULL, *y = NULL;
+    int rc = GSN_OK;
+    GSN_CALL_GOTO(alloc_array((void **)&x, 3 * (size_t)n, sizeof(double)), rc,
+                  done);
+    GSN_CALL_GOTO(alloc_array((void **)&y, 3 * (size_t)n, sizeof(double)), rc,
+                  done);
+    /* Deterministic start with every mode present: a hashed sequence. */
+    unsigned state = 12345u;
+    for (int i = 0; i < 3 * n; ++i) {
+        state = state * 1664525u + 1013904223u;
+        x[i] = (double)(state >> 8) / 16777216.0 - 0.5;
+    }
+    double lambda = 0.0;
+    for (int iteration = 0; iteration < POWER_ITERATIONS; ++iteration) {
+        /* Normalize in the mass norm, then y = M^-1 K x. */
+        double norm = 0.0;
+        for (int i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k)
+                norm += e->mass[i] * x[3 * i + k] * x[3 * i + k];
+        norm = sqrt(norm);
+        GSN_CHECK_GOTO(norm > 0.0 && isfinite(norm), rc, GSN_ERR_NUMERICAL,
+                       done, "the stable step estimate broke down");
+        for (int i = 0; i < 3 * n; ++i)
+            x[i] /= norm;
+        apply_stiffness(e, x, y);
+        double rayleigh = 0.0;
+        for (int i = 0; i < 3 * n; ++i)
+            rayleigh += x[i] * y[i];
+        lambda = rayleigh; /* x^T K x / x^T M x with x^T M x = 1 */
+        for (int i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k)
+                x[3 * i + k] = y[3 * i + k] / e->mass[i];
+    }
+    GSN_CHECK_GOTO(lambda > 0.0, rc, GSN_ERR_NUMERICAL, done,
+                   "the stiffness has no positive eigenvalue");
+    *dt = 2.0 / sqrt(lambda);
+done:
+    free(x);
+    free(y);
+    return rc;
+}
+
+void gsn_explicit_particle_field(const struct gsn_explicit *e,
+                                 const double *coefficients, double *out)
+{
+    const struct gsn_shape_rows *values = &e->quadrature->particle_values;
+#pragma omp parallel for schedule(static)
+    for (int j = 0; j < e->particle_count; ++j) {
+        double u[3] = {0.0, 0.0, 0.0};
+        for (int k = values->offset[j]; k < values->offset[j + 1]; ++k)
+            for (int c = 0; c < 3; ++c)
+                u[c] +=
+                    values->value[k] * coefficients[3 * values->index[k] + c];
+        memcpy(&out[3 * j], u, sizeof u);
+    }
+}
+
+void gsn_explicit_particle_stress(const struct gsn_explicit *e, double *out)
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    memset(out, 0, sizeof(double) * 6 * (size_t)e->particle_count);
+    for (int p = 0; p < e->main_point_count; ++p) {
+        int particle = q->point_particle ? q->point_particle[p] : -1;
+        if (particle >= 0)
+            memcpy(&out[6 * particle], &e->stress[6 * p], 6 * sizeof(double));
+    }
+}

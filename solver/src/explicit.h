@@ -1,0 +1,113 @@
+/* The explicit central-difference loop of the seed paper, eqs. (26)-(34),
+ * in updated-Lagrangian form with Lagrangian (reference) shape functions.
+ *
+ * Per step, from d_n, v_n, a_n:
+ *   d_{n+1} = d_n + dt v_n + dt^2/2 a_n                       eq. (33)
+ *   boundary coefficients corrected so u(X_J) holds exactly  (constraint.h)
+ *   pass 1, per integration point p (no writes shared between points):
+ *     F = I + sum_I d_I (x) grad_X Psi_I(X_p)                 eq. (21)
+ *     G = (F_{n+1} - F_n) F_{n+1/2}^-1, the incremental gradient on the
+ *     mid-step configuration; stress by Hughes-Winget + material (Fig. 3)
+ *     P_p = det F sigma F^-T w_p  (so that B_I^T sigma det F V_p of eq. (29)
+ *     is P_p grad_X Psi_I(X_p), with the chain rule of eq. (25))
+ *   pass 2, per particle I, gathering over the points whose row holds I in
+ *   ascending point order (results independent of the thread count):
+ *     f_int_I = sum_p P_p grad_X Psi_I(X_p)                   eq. (29)
+ *     a_{n+1} = M^-1 (f_ext - f_int)                          eq. (32)
+ *   v_{n+1} = v_n + dt/2 (a_n + a_{n+1})                      eq. (34)
+ * with the row-sum lumped mass m_I = rho0 sum_L Psi_I(X_L) V_L (eq. (28))
+ * and the body force f_ext_I = m_I g (eq. (27) with the same row sums). */
+#ifndef GEOSCNI_EXPLICIT_H
+#define GEOSCNI_EXPLICIT_H
+
+#include "constraint.h"
+#include "geoscni/case.h"
+#include "geoscni/kernels.h"
+#include "material.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct gsn_explicit {
+    const struct gsn_quadrature *quadrature;   /* borrowed */
+    const struct gsn_material_model *material; /* borrowed */
+    struct gsn_constraints *constraints;       /* borrowed, may be NULL */
+    int particle_count, point_count, main_point_count, state_size;
+    double bulk_modulus, shear_modulus; /* Pa, for stabilization points */
+    double dt;                          /* s */
+    long step;
+    double time; /* step * dt, s */
+
+    double *mass;         /* n, kg */
+    double *displacement; /* n x 3 coefficients d_I, m */
+    double *velocity;     /* n x 3, m/s */
+    double *acceleration; /* n x 3, m/s^2 */
+    double *f_ext;        /* n x 3 body force, N */
+    double *f_int;        /* n x 3 internal force, N */
+    double *reaction;     /* n x 3: M a - f_ext + f_int where constrained */
+    double *stress;       /* points x 6, Pa (nominal Cauchy) */
+    double *state;        /* main points x state_size */
+    double *deformation;  /* main points x 9: F at t_n */
+
+    double kinetic_energy, internal_energy, external_work; /* J */
+
+    /* Work arrays, owned. */
+    double *previous_displacement, *previous_external, *new_acceleration;
+    double *piola;        /* points x 9: P_p w_p */
+    double *point_energy; /* points: internal energy increment, J */
+    int *point_failed;    /* points: 1 where pass 1 failed */
+    double *thread_work;
+    int thread_count;
+    int *transpose_offset; /* n + 1 */
+    int *transpose_point;  /* entries: the point p of each */
+    int *transpose_entry;  /* entries: the gradient entry of each */
+};
+
+/* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped
+ * mass must be positive at every particle. */
+int gsn_explicit_create(const struct gsn_quadrature *quadrature,
+                        const struct gsn_material_model *material,
+                        struct gsn_constraints *constraints,
+                        const struct gsn_case *c, double dt,
+                        struct gsn_explicit **out);
+
+/* Frees; NULL-safe, nulls the handle. */
+void gsn_explicit_destroy(struct gsn_explicit **e);
+
+/* Adds a dead-load traction t (Pa, per reference area) on the boundary
+ * facets of model surface `surface` to f_ext, integrated with the facet
+ * quadrature of the smoothing (eq. (27); DESIGN.md: the same points keep
+ * the patch test exact). */
+void gsn_explicit_add_traction(struct gsn_explicit *e,
+                               const struct gsn_model *m, int surface,
+                               const double traction[3]);
+
+/* Recomputes everything derived from the state (F at the points from d,
+ * the first-pass arrays) after the state was loaded from a checkpoint. */
+int gsn_explicit_refresh(struct gsn_explicit *e);
+
+/* One step from t_n to t_{n+1}. GSN_ERR_NUMERICAL names the step, the time
+ * and the particle when a point inverts (det F <= 0), a value is not finite
+ * or the material fails. */
+int gsn_explicit_step(struct gsn_explicit *e);
+
+/* The largest stable step of the linear elastic system at the reference
+ * configuration, 2 / sqrt(lambda_max(M^-1 K)), with lambda_max from power
+ * iteration (deterministic start). Unconstrained, so it bounds the
+ * constrained system's step from below. */
+int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt);
+
+/* Field values at the particles from coefficients (n x 3 each):
+ * out_J = sum_I Psi_I(X_J) c_I. */
+void gsn_explicit_particle_field(const struct gsn_explicit *e,
+                                 const double *coefficients, double *out);
+
+/* Stress at the particles (n x 6): the stress of each particle's nodal
+ * point. */
+void gsn_explicit_particle_stress(const struct gsn_explicit *e, double *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
