@@ -103,6 +103,8 @@ void gsn_material_model_destroy(struct gsn_material_model **model)
 int gsn_material_state_offset(const struct gsn_material_ops *ops,
                               const char *name)
 {
+    if (!ops || !name)
+        return -1;
     int offset = 0;
     for (int v = 0; v < ops->state_variable_count; ++v) {
         if (strcmp(ops->state_variables[v].name, name) == 0)

@@ -4,7 +4,7 @@
 #include "geoscni/error.h"
 #include "geoscni/tensor.h"
 
-enum { STRESS_UPDATE_BLOCK = 64 }; /* points per material call */
+#define STRESS_UPDATE_BLOCK ((size_t)64) /* points per material call */
 
 void gsn_stress_update_increment(const double gradient[9],
                                  double strain_increment[6], double rotation[9])
@@ -68,10 +68,12 @@ int gsn_stress_update(const struct gsn_material_model *model, size_t count,
     const size_t ns = (size_t)ops->state_size;
     double block[6 * STRESS_UPDATE_BLOCK];
     for (size_t first = 0; first < count; first += STRESS_UPDATE_BLOCK) {
-        const size_t n = count - first < STRESS_UPDATE_BLOCK
-                             ? count - first
-                             : STRESS_UPDATE_BLOCK;
-        double *de = strain_increment ? strain_increment + 6 * first : block;
+        size_t n = STRESS_UPDATE_BLOCK;
+        if (count - first < n)
+            n = count - first;
+        double *de = block; /* written by gsn_stress_update_increment */
+        if (strain_increment)
+            de = strain_increment + 6 * first;
         double *q = ns ? state + ns * first : state;
         for (size_t i = 0; i < n; ++i) {
             double Q[9];
@@ -98,9 +100,9 @@ int gsn_stress_update_split(const struct gsn_material_model *model,
     const size_t ns = (size_t)ops->state_size;
     double half[6 * STRESS_UPDATE_BLOCK], rotation[9 * STRESS_UPDATE_BLOCK];
     for (size_t first = 0; first < count; first += STRESS_UPDATE_BLOCK) {
-        const size_t n = count - first < STRESS_UPDATE_BLOCK
-                             ? count - first
-                             : STRESS_UPDATE_BLOCK;
+        size_t n = STRESS_UPDATE_BLOCK;
+        if (count - first < n)
+            n = count - first;
         double *q = ns ? state + ns * first : state;
         for (size_t i = 0; i < n; ++i) {
             double de[6];
