@@ -21,6 +21,7 @@ void gsn_kernel_options_from_case(const struct gsn_case *c,
     options->gauss_points = c->gauss_points;
     options->stabilization = c->stabilization;
     options->stabilization_coefficient = GSN_DEFAULT_STABILIZATION_COEFFICIENT;
+    options->stabilization_subcells = GSN_DEFAULT_STABILIZATION_SUBCELLS;
 }
 
 void gsn_quadrature_destroy(struct gsn_quadrature **q)
@@ -69,6 +70,7 @@ struct facet_context {
     const int *particle_facet_offset; /* facets of each particle, ascending */
     const int *particle_facet;
     const struct gsn_shape_rows *nodal; /* B_L rows (MSCNI) */
+    int subcells;                       /* MSCNI: 2 or 6 */
 };
 
 static int compare_int(const void *a, const void *b)
@@ -181,7 +183,7 @@ static int scni_row(void *context, int L, struct kernel_thread *t)
  * to B_L, has B_s != 0. Row 6 L + s holds B_s - B_L. */
 
 static void pyramid(const struct gsn_model *m, int f, int L, double sign,
-                    double *volume, double *centroid, int *group)
+                    int subcells, double *volume, double *centroid, int *group)
 {
     double area = 0.0, c[3] = {0, 0, 0};
     for (int q = m->facet_point_offset[f]; q < m->facet_point_offset[f + 1];
@@ -203,21 +205,22 @@ static void pyramid(const struct gsn_model *m, int f, int L, double sign,
     *volume = height * area / 3.0;
     for (int k = 0; k < 3; ++k)
         centroid[k] = x[k] + 0.75 * (c[k] - x[k]);
-    *group = 2 * axis + (sign * nf[axis] < 0.0);
+    *group = subcells == 6 ? 2 * axis + (sign * nf[axis] < 0.0)
+                           : (sign * nf[axis] < 0.0);
 }
 
 static int mscni_row(void *context, int row, struct kernel_thread *t)
 {
     const struct facet_context *c = context;
     const struct gsn_model *m = c->m;
-    int L = row / 6, s = row % 6, touched = 0;
+    int L = row / c->subcells, s = row % c->subcells, touched = 0;
     double total = 0.0;
     for (int e = c->particle_facet_offset[L];
          e < c->particle_facet_offset[L + 1]; ++e) {
         int f = c->particle_facet[e], group;
         double sign = m->facet_owner[f] == L ? 1.0 : -1.0;
         double volume, centroid[3];
-        pyramid(m, f, L, sign, &volume, centroid, &group);
+        pyramid(m, f, L, sign, c->subcells, &volume, centroid, &group);
         /* pyramids of facets through X_L have no volume */
         if (group != s || !(volume > 1e-12 * m->volume[L]))
             continue;
@@ -262,15 +265,15 @@ static void mscni_weights(const struct gsn_model *m,
             int f = c->particle_facet[e], group;
             double sign = m->facet_owner[f] == L ? 1.0 : -1.0;
             double volume, centroid[3];
-            pyramid(m, f, L, sign, &volume, centroid, &group);
+            pyramid(m, f, L, sign, c->subcells, &volume, centroid, &group);
             if (!(volume > 1e-12 * m->volume[L]))
                 continue;
             v[group] += volume;
             for (int k = 0; k < 3; ++k)
                 x[group][k] += volume * centroid[k];
         }
-        for (int s = 0; s < 6; ++s) {
-            size_t p = 6 * (size_t)L + (size_t)s;
+        for (int s = 0; s < c->subcells; ++s) {
+            size_t p = c->subcells * (size_t)L + (size_t)s;
             weight[p] = coefficient * v[s];
             for (int k = 0; k < 3; ++k)
                 position[3 * p + k] = v[s] > 0.0
@@ -492,7 +495,7 @@ static int nodal_points(const struct gsn_model *m, struct gsn_quadrature *q)
 static int stabilize(const struct gsn_model *m, struct facet_context *c,
                      double coefficient, struct gsn_quadrature *q)
 {
-    size_t n = (size_t)m->particle_count, ns = 6 * n, total = n + ns;
+    size_t n = (size_t)m->particle_count, ns = c->subcells * n, total = n + ns;
     double *w = realloc(q->point_weight, total * sizeof *w);
     GSN_CHECK(w, GSN_ERR_MEMORY, "cannot grow points");
     q->point_weight = w;
@@ -503,7 +506,7 @@ static int stabilize(const struct gsn_model *m, struct facet_context *c,
     GSN_CHECK(owner, GSN_ERR_MEMORY, "cannot grow points");
     q->point_particle = owner;
     for (size_t s = 0; s < ns; ++s)
-        owner[n + s] = (int)(s / 6);
+        owner[n + s] = (int)(s / c->subcells);
     mscni_weights(m, c, coefficient, w + n, x + 3 * n);
     struct gsn_shape_rows rows;
     c->nodal = &q->gradient;
@@ -535,6 +538,11 @@ static int quadrature_build(const struct gsn_model *m,
               GSN_ERR_INPUT,
               "stabilization mscni applies to nodal integration (scni or "
               "dni), not gauss");
+    GSN_CHECK(o->stabilization == GSN_STABILIZATION_NONE ||
+                  o->stabilization_subcells == 2 ||
+                  o->stabilization_subcells == 6,
+              GSN_ERR_INPUT, "MSCNI sub-cells %d: only 2 or 6",
+              o->stabilization_subcells);
     q->method = o->integration;
     q->stabilization = o->stabilization;
     q->particle_count = n;
@@ -556,7 +564,8 @@ static int quadrature_build(const struct gsn_model *m,
                                q->boundary_point_position, 0,
                                &q->boundary_values));
 
-    struct facet_context c = {m, q->rk, NULL, NULL, NULL};
+    struct facet_context c = {m,    q->rk, NULL,
+                              NULL, NULL,  o->stabilization_subcells};
     if (o->integration == GSN_INTEGRATION_GAUSS) {
         int count = 0;
         GSN_CALL(gauss_points(m, o->gauss_points, background, background_count,

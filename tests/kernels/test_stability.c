@@ -7,6 +7,7 @@
  *    0.15-0.98, SCNI 4e-3-9e-2, DNI 3e-2-8e-2; smooth 0.067, 0.12, 0.093. */
 #include "geoscni/error.h"
 #include "geoscni/kernels.h"
+#include "geoscni/pre.h"
 #include "kernel_fixtures.h"
 
 static const double LAMBDA = 21.30e6, MU = 9.15e6;
@@ -50,10 +51,10 @@ static void jacobi_eigenvalues(int n, double *a, double *eig)
 
 static struct gsn_quadrature *build(const struct gsn_model *m,
                                     enum gsn_integration method,
-                                    enum gsn_stabilization stab,
+                                    enum gsn_stabilization stab, int subcells,
                                     const double *bg, int nbg)
 {
-    struct gsn_kernel_options o = {1.5, 1, method, 2, stab, 1.0};
+    struct gsn_kernel_options o = {1.5, 1, method, 2, stab, 1.0, subcells};
     struct gsn_quadrature *q = NULL;
     int rc = gsn_quadrature_create(m, &o, bg, nbg, &q);
     if (rc)
@@ -182,13 +183,16 @@ static struct quotients rayleigh(const struct gsn_quadrature *q,
 int main(void)
 {
     test_begin();
-    const char *names[4] = {"SCNI", "SCNI+MSCNI", "DNI", "Gauss 2x2x2"};
-    const enum gsn_integration method[4] = {
+    enum { METHODS = 5 };
+    const char *names[METHODS] = {"SCNI", "SCNI+MSCNI 6", "DNI", "Gauss 2x2x2",
+                                  "SCNI+MSCNI 2"};
+    const enum gsn_integration method[METHODS] = {
         GSN_INTEGRATION_SCNI, GSN_INTEGRATION_SCNI, GSN_INTEGRATION_DNI,
-        GSN_INTEGRATION_GAUSS};
-    const enum gsn_stabilization stab[4] = {
+        GSN_INTEGRATION_GAUSS, GSN_INTEGRATION_SCNI};
+    const enum gsn_stabilization stab[METHODS] = {
         GSN_STABILIZATION_NONE, GSN_STABILIZATION_MSCNI, GSN_STABILIZATION_NONE,
-        GSN_STABILIZATION_NONE};
+        GSN_STABILIZATION_NONE, GSN_STABILIZATION_MSCNI};
+    const int subcells[METHODS] = {6, 6, 6, 6, 2};
 
     /* 1. zero-energy modes of a free 4^3 block */
     {
@@ -197,8 +201,9 @@ int main(void)
         TEST_INT(fixture_lattice(size, 0.5, 1, &m), GSN_OK);
         int nbg;
         double *bg = fixture_background(size, 0.5, &nbg);
-        for (int s = 0; s < 4; ++s) {
-            struct gsn_quadrature *q = build(&m, method[s], stab[s], bg, nbg);
+        for (int s = 0; s < METHODS; ++s) {
+            struct gsn_quadrature *q =
+                build(&m, method[s], stab[s], subcells[s], bg, nbg);
             double next;
             int zeros = zero_modes(q, &next);
             printf("free 4^3 block, %-12s: %d zero-energy modes, next "
@@ -212,6 +217,37 @@ int main(void)
         gsn_model_free(&m);
     }
 
+    /* 1b. the same on a jittered 4^3 block (+-0.2h) with Voronoi cells */
+    {
+        const double h = 0.5, lo[3] = {0, 0, 0}, hi[3] = {1.5, 1.5, 1.5};
+        double x[3 * 64];
+        unsigned long long seed = 77;
+        for (int p = 0; p < 64; ++p) {
+            int ijk[3] = {p % 4, (p / 4) % 4, p / 16};
+            for (int d = 0; d < 3; ++d)
+                x[3 * p + d] =
+                    ijk[d] * h +
+                    (ijk[d] > 0 && ijk[d] < 3
+                         ? 0.2 * h * (2.0 * fixture_uniform(&seed) - 1.0)
+                         : 0.0);
+        }
+        struct gsn_model m;
+        TEST_INT(gsn_pre_domains_box(x, 64, lo, hi, 1, &m), GSN_OK);
+        for (int s = 0; s < 3; ++s) {
+            int i = s == 2 ? 4 : s; /* SCNI, MSCNI 6, MSCNI 2 */
+            struct gsn_quadrature *q =
+                build(&m, method[i], stab[i], subcells[i], NULL, 0);
+            double next;
+            int zeros = zero_modes(q, &next);
+            printf("free jittered 4^3 block, %-12s: %d zero-energy modes, "
+                   "next eigenvalue %.3g lambda_max\n",
+                   names[i], zeros, next);
+            TEST_INT(zeros, 6);
+            gsn_quadrature_destroy(&q);
+        }
+        gsn_model_free(&m);
+    }
+
     /* 2. checkerboards on a 10^3 lattice */
     {
         const int size[3] = {10, 10, 10};
@@ -219,9 +255,10 @@ int main(void)
         TEST_INT(fixture_lattice(size, 1.0, 1, &m), GSN_OK);
         int nbg;
         double *bg = fixture_background(size, 1.0, &nbg);
-        struct quotients r[4];
-        for (int s = 0; s < 4; ++s) {
-            struct gsn_quadrature *q = build(&m, method[s], stab[s], bg, nbg);
+        struct quotients r[METHODS];
+        for (int s = 0; s < METHODS; ++s) {
+            struct gsn_quadrature *q =
+                build(&m, method[s], stab[s], subcells[s], bg, nbg);
             r[s] = rayleigh(q, size);
             printf("10^3 lattice, %-12s: checkerboard x envelope Rayleigh "
                    "quotient / lambda_max %.2e .. %.2e, smooth mode %.3g\n",
@@ -231,8 +268,10 @@ int main(void)
         /* SCNI and DNI leave checkerboards softer than the smooth mode */
         TEST_TRUE(r[0].lo < r[0].smooth);
         TEST_TRUE(r[2].lo < r[2].smooth);
-        /* MSCNI lifts every checkerboard above the smooth mode */
-        TEST_TRUE(r[1].lo > r[1].smooth);
+        /* MSCNI lifts every checkerboard above the smooth mode, with 6
+         * sub-cells by more than a factor 2 (like Gauss 2x2x2) */
+        TEST_TRUE(r[1].lo > 2.0 * r[1].smooth);
+        TEST_TRUE(r[4].lo > r[4].smooth);
         free(bg);
         gsn_model_free(&m);
     }

@@ -36,6 +36,11 @@ extern "C" {
 /* Stabilization coefficient of modified SCNI (Puso et al. 2008 use 1). */
 #define GSN_DEFAULT_STABILIZATION_COEFFICIENT 1.0
 
+/* Sub-cells per nodal domain of modified SCNI: 6 groups the pyramids over
+ * the facets by the dominant signed axis of their normal, 2 by the sign
+ * only (a third of the storage, weaker: docs/kernels.md). */
+#define GSN_DEFAULT_STABILIZATION_SUBCELLS 6
+
 /* Compressed rows: entries offset[r] .. offset[r+1]-1 of row r, sorted by
  * index. value and gradient (3 per entry, d/dX_0..2) may be NULL. */
 struct gsn_shape_rows {
@@ -115,6 +120,7 @@ struct gsn_kernel_options {
     int gauss_points; /* per direction per background cell, GAUSS */
     enum gsn_stabilization stabilization;
     double stabilization_coefficient; /* MSCNI: weight of the sub-cells */
+    int stabilization_subcells;       /* MSCNI: 6 (+-x, +-y, +-z) or 2 */
 };
 
 void gsn_kernel_options_from_case(const struct gsn_case *c,

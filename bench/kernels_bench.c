@@ -1,0 +1,86 @@
+/* Benchmark of the kernels (issue 4, point 6): time to build the RK shape
+ * functions and the SCNI smoothed gradients for Slope I at paper resolution
+ * (about 52,000 particles in 1500 m^3), and the bytes stored per particle.
+ * Until pre meshes the slope, the particles are a lattice jittered by
+ * +-0.2h with the same count in a 15 x 10 x 10 m box (the same volume),
+ * and their nodal domains come from gsn_pre_domains_box.
+ *
+ *   build-kernels/bin/kernels_bench [nx ny nz]   (default 49 33 33) */
+#include "geoscni/error.h"
+#include "geoscni/kernels.h"
+#include "geoscni/pre.h"
+
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static double uniform(unsigned long long *s)
+{
+    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*s >> 11) / 9007199254740992.0;
+}
+
+int main(int argc, char **argv)
+{
+    int size[3] = {49, 33, 33};
+    for (int d = 0; d < 3 && d + 1 < argc; ++d)
+        size[d] = atoi(argv[d + 1]);
+    const double length[3] = {15.0, 10.0, 10.0};
+    int n = size[0] * size[1] * size[2];
+    double *x = malloc(3 * (size_t)n * sizeof *x);
+    unsigned long long seed = 1;
+    int p = 0;
+    for (int k = 0; k < size[2]; ++k)
+        for (int j = 0; j < size[1]; ++j)
+            for (int i = 0; i < size[0]; ++i, ++p) {
+                int ijk[3] = {i, j, k};
+                for (int d = 0; d < 3; ++d) {
+                    double h = length[d] / (size[d] - 1);
+                    double v = ijk[d] * h;
+                    if (ijk[d] > 0 && ijk[d] < size[d] - 1)
+                        v += 0.2 * h * (2.0 * uniform(&seed) - 1.0);
+                    x[3 * p + d] = v;
+                }
+            }
+    const double lo[3] = {0, 0, 0};
+    printf("%d particles, %d threads\n", n, omp_get_max_threads());
+    struct gsn_model m;
+    double t0 = omp_get_wtime();
+    if (gsn_pre_domains_box(x, n, lo, length, 1, &m)) {
+        gsn_error_print(stderr);
+        return 1;
+    }
+    printf("nodal domains (pre, for reference): %.2f s, %d facets\n",
+           omp_get_wtime() - t0, m.facet_count);
+    const char *names[4] = {"scni", "scni + mscni 6", "scni + mscni 2", "dni"};
+    const enum gsn_integration method[4] = {
+        GSN_INTEGRATION_SCNI, GSN_INTEGRATION_SCNI, GSN_INTEGRATION_SCNI,
+        GSN_INTEGRATION_DNI};
+    const enum gsn_stabilization stab[4] = {
+        GSN_STABILIZATION_NONE, GSN_STABILIZATION_MSCNI,
+        GSN_STABILIZATION_MSCNI, GSN_STABILIZATION_NONE};
+    const int subcells[4] = {6, 6, 2, 6};
+    for (int s = 0; s < 4; ++s) {
+        struct gsn_kernel_options o = {1.5,     1,   method[s],  2,
+                                       stab[s], 1.0, subcells[s]};
+        struct gsn_quadrature *q = NULL;
+        t0 = omp_get_wtime();
+        if (gsn_quadrature_create(&m, &o, NULL, 0, &q)) {
+            gsn_error_print(stderr);
+            return 1;
+        }
+        double t = omp_get_wtime() - t0;
+        size_t bytes = gsn_quadrature_bytes(q);
+        int nnz = q->gradient.offset[q->point_count];
+        int main_nnz = q->gradient.offset[q->main_point_count];
+        printf("%-14s: %.2f s to build shape functions and gradients; %d "
+               "points, %.1f neighbours per nodal row, %.1f gradient entries "
+               "per particle; %.0f bytes per particle (%.1f MB)\n",
+               names[s], t, q->point_count, (double)main_nnz / n,
+               (double)nnz / n, (double)bytes / n, bytes / 1e6);
+        gsn_quadrature_destroy(&q);
+    }
+    gsn_model_free(&m);
+    free(x);
+    return 0;
+}
