@@ -1,12 +1,621 @@
-/* post: the driver. Files, plots and pictures are built in issue 6. */
+/* post: the driver. Reads OUTDIR/model.h5 (reference positions and
+ * tetrahedra) and OUTDIR/results.h5 one frame at a time, so memory stays
+ * bounded by one frame, and writes OUTDIR/vtu/frame_NNNN.vtu, OUTDIR/CASE.pvd,
+ * the pictures in OUTDIR/pictures/ and, from OUTDIR/history.csv, the plots in
+ * OUTDIR/plots/ (DESIGN.md, "What a run leaves"). Every file is written under
+ * a temporary name and renamed when complete (files.h). */
 #include "geoscni/post.h"
+#include "display.h"
+#include "history.h"
+#include "vtk_output.h"
+
+#include "geoscni/case.h"
 #include "geoscni/error.h"
+#include "geoscni/files.h"
+#include "geoscni/h5io.h"
+#include "geoscni/results.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+enum {
+    PICTURE_FRAMES = 5, /* damage pictures: first, 3 evenly spaced, last */
+    CASE_NAME_SIZE = 128,
+    TITLE_SIZE = 256
+};
+
+/* What post needs of model.h5: reference positions and the tetrahedra. */
+struct post_mesh {
+    int point_count;
+    double *reference; /* point_count x 3, m */
+    int tetrahedron_count;
+    int *tetrahedra;  /* tetrahedron_count x 4 */
+    double bounds[6]; /* of the reference positions, m */
+};
+
+static void post_mesh_free(struct post_mesh *mesh)
+{
+    free(mesh->reference);
+    free(mesh->tetrahedra);
+    memset(mesh, 0, sizeof *mesh);
+}
+
+static int post_mesh_read_file(hid_t file, const char *path,
+                               struct post_mesh *mesh)
+{
+    const struct gsn_dataset_info *position =
+        &gsn_model_datasets[GSN_MODEL_POSITION];
+    const struct gsn_dataset_info *tetrahedra =
+        &gsn_model_datasets[GSN_MODEL_TETRAHEDRA];
+    size_t points = 0, cells = 0;
+    GSN_CALL(gsn_h5_require(file, position, 1));
+    GSN_CALL(gsn_h5_require(file, tetrahedra, 1));
+    GSN_CALL(gsn_h5_rows(file, position, &points));
+    GSN_CALL(gsn_h5_rows(file, tetrahedra, &cells));
+    GSN_CHECK(points > 0 && points < (1u << 30) && cells < (1u << 29),
+              GSN_ERR_INPUT,
+              "%s: %zu particles and %zu tetrahedra: empty or "
+              "too large a model",
+              path, points, cells);
+    mesh->point_count = (int)points;
+    mesh->tetrahedron_count = (int)cells;
+    mesh->reference = malloc(3 * points * sizeof(double));
+    mesh->tetrahedra = malloc((4 * cells + 1) * sizeof(int));
+    GSN_CHECK(mesh->reference && mesh->tetrahedra, GSN_ERR_MEMORY,
+              "cannot allocate the mesh of %zu particles", points);
+    GSN_CALL(gsn_h5_read(file, position, points, mesh->reference));
+    GSN_CALL(gsn_h5_read(file, tetrahedra, cells, mesh->tetrahedra));
+    for (size_t k = 0; k < 4 * cells; ++k)
+        GSN_CHECK(mesh->tetrahedra[k] >= 0 && mesh->tetrahedra[k] < (int)points,
+                  GSN_ERR_INPUT,
+                  "%s: mesh/tetrahedra[%zu] = %d is not a particle index "
+                  "(%zu particles); the file is damaged, run pre again",
+                  path, k, mesh->tetrahedra[k], points);
+    for (int j = 0; j < 3; ++j) {
+        mesh->bounds[2 * j] = HUGE_VAL;
+        mesh->bounds[2 * j + 1] = -HUGE_VAL;
+    }
+    for (size_t i = 0; i < points; ++i)
+        for (int j = 0; j < 3; ++j) {
+            double x = mesh->reference[3 * i + j];
+            GSN_CHECK(isfinite(x), GSN_ERR_INPUT,
+                      "%s: particle %zu has a non-finite position", path, i);
+            mesh->bounds[2 * j] = fmin(mesh->bounds[2 * j], x);
+            mesh->bounds[2 * j + 1] = fmax(mesh->bounds[2 * j + 1], x);
+        }
+    return GSN_OK;
+}
+
+static int post_mesh_read(const char *path, struct post_mesh *mesh)
+{
+    memset(mesh, 0, sizeof *mesh);
+    hid_t file = H5I_INVALID_HID;
+    GSN_CALL(gsn_h5_open(path, GSN_FILE_KIND_MODEL, 0, &file));
+    int rc = post_mesh_read_file(file, path, mesh);
+    gsn_h5_close(&file);
+    if (rc != GSN_OK) {
+        post_mesh_free(mesh);
+        return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
+                              "post_mesh_read_file(file, path, mesh)");
+    }
+    return GSN_OK;
+}
+
+/* The case name: the results' "case_name" attribute, else the folder's
+ * name; characters unsafe in a file name become '_'. */
+static int post_case_name(hid_t results, const char *outdir, char *name,
+                          size_t size)
+{
+    char *stored = NULL;
+    if (H5Aexists(results, GSN_RESULTS_ATTR_CASE_NAME) > 0)
+        GSN_CALL(gsn_h5_attr_read_string(results, GSN_RESULTS_ATTR_CASE_NAME,
+                                         &stored));
+    if (stored && *stored) {
+        snprintf(name, size, "%s", stored);
+    } else {
+        size_t length = strlen(outdir);
+        while (length > 1 && outdir[length - 1] == '/')
+            --length;
+        size_t start = length;
+        while (start > 0 && outdir[start - 1] != '/')
+            --start;
+        snprintf(name, size, "%.*s", (int)(length - start), outdir + start);
+    }
+    free(stored);
+    for (char *c = name; *c; ++c)
+        if (!strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                    "0123456789._-",
+                    *c))
+            *c = '_';
+    if (!*name || !strcmp(name, ".") || !strcmp(name, ".."))
+        snprintf(name, size, "case");
+    return GSN_OK;
+}
+
+/* The resolved case stored in results.h5, loaded with the case reader. Its
+ * geometry is not needed here and may have moved: the geometry line is
+ * pointed at the temporary copy itself, which exists. 0 if unavailable. */
+static int post_case_load(hid_t results, struct gsn_case *c)
+{
+    char *yaml = NULL;
+    if (H5Aexists(results, GSN_ATTR_CASE) <= 0)
+        return 0;
+    if (gsn_h5_attr_read_string(results, GSN_ATTR_CASE, &yaml) != GSN_OK) {
+        gsn_error_clear();
+        return 0;
+    }
+    char path[] = "/tmp/geoscni-post-case-XXXXXX";
+    int fd = mkstemp(path);
+    FILE *file = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!file) {
+        if (fd >= 0)
+            close(fd);
+        free(yaml);
+        return 0;
+    }
+    const char *base = strrchr(path, '/') + 1;
+    for (char *line = yaml; line && *line;) {
+        char *end = strchr(line, '\n');
+        size_t length = end ? (size_t)(end - line) + 1 : strlen(line);
+        if (strncmp(line, "geometry:", 9) == 0)
+            fprintf(file, "geometry: '%s'\n", base);
+        else
+            fwrite(line, 1, length, file);
+        line += length;
+    }
+    free(yaml);
+    int ok = fclose(file) == 0 && gsn_case_load(path, c) == GSN_OK;
+    if (!ok)
+        gsn_error_clear();
+    unlink(path);
+    return ok;
+}
+
+static int post_frame_path(const char *outdir, int index, char *path,
+                           size_t size)
+{
+    int n = snprintf(path, size, "%s/vtu/frame_%04d.vtu", outdir, index);
+    GSN_CHECK(n > 0 && (size_t)n < size, GSN_ERR_INPUT, "path too long: %s",
+              outdir);
+    return GSN_OK;
+}
+
+static int post_vtu_write(const struct gsn_vtk_grid *grid, const char *path)
+{
+    char temporary[GSN_PATH_SIZE];
+    GSN_CALL(gsn_path_temporary(temporary, sizeof temporary, path));
+    int rc = gsn_vtk_grid_write(grid, temporary);
+    if (rc == GSN_OK)
+        rc = gsn_file_commit(path);
+    if (rc != GSN_OK) {
+        gsn_file_discard(path);
+        return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
+                              "gsn_vtk_grid_write(grid, temporary)");
+    }
+    return GSN_OK;
+}
+
+static int post_picture_write(const struct gsn_vtk_grid *grid,
+                              enum gsn_vtk_picture picture,
+                              const double bounds[6], const char *title,
+                              const char *path)
+{
+    char temporary[GSN_PATH_SIZE];
+    GSN_CALL(gsn_path_temporary(temporary, sizeof temporary, path));
+    int rc = gsn_vtk_grid_render(grid, picture, bounds, title, temporary);
+    if (rc == GSN_OK)
+        rc = gsn_file_commit(path);
+    if (rc != GSN_OK) {
+        gsn_file_discard(path);
+        return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
+                              "gsn_vtk_grid_render(...)");
+    }
+    return GSN_OK;
+}
+
+/* The damage pictures' frames: first, evenly spaced, last. */
+static int post_is_picture_frame(int index, int count)
+{
+    if (count <= PICTURE_FRAMES)
+        return 1;
+    for (int k = 0; k < PICTURE_FRAMES; ++k)
+        if (index ==
+            (int)lround((double)k * (count - 1) / (PICTURE_FRAMES - 1)))
+            return 1;
+    return 0;
+}
+
+/* Renders the pictures of a frame: damage on the body at the chosen frames;
+ * u_x, u_y, u_z and equivalent stress on the clipped half at the last. */
+static int post_frame_pictures(const struct gsn_vtk_grid *grid,
+                               const struct post_mesh *mesh,
+                               const struct gsn_frame *frame, int index,
+                               int count, const char *folder,
+                               const char *case_name, int *written)
+{
+    static const struct {
+        enum gsn_vtk_picture picture;
+        const char *file, *what;
+    } clips[] = {
+        {GSN_VTK_PICTURE_CLIP_UX, "clip_ux", "u_x"},
+        {GSN_VTK_PICTURE_CLIP_UY, "clip_uy", "u_y"},
+        {GSN_VTK_PICTURE_CLIP_UZ, "clip_uz", "u_z"},
+        {GSN_VTK_PICTURE_CLIP_EQUIVALENT_STRESS, "clip_equivalent_stress",
+         "equivalent stress"},
+    };
+    char path[GSN_PATH_SIZE], title[TITLE_SIZE];
+    if (post_is_picture_frame(index, count)) {
+        snprintf(title, sizeof title, "%s: damage at t = %.6g s", case_name,
+                 frame->time);
+        int n = snprintf(path, sizeof path, "%s/damage_frame_%04d.png", folder,
+                         index);
+        GSN_CHECK(n > 0 && (size_t)n < sizeof path, GSN_ERR_INPUT,
+                  "path too long: %s", folder);
+        GSN_CALL(post_picture_write(grid, GSN_VTK_PICTURE_DAMAGE, mesh->bounds,
+                                    title, path));
+        ++*written;
+    }
+    if (index != count - 1)
+        return GSN_OK;
+    double middle = 0.5 * (mesh->bounds[2] + mesh->bounds[3]);
+    for (size_t k = 0; k < sizeof clips / sizeof clips[0]; ++k) {
+        snprintf(title, sizeof title,
+                 "%s: %s on the half y >= %.4g m, t = %.6g s", case_name,
+                 clips[k].what, middle, frame->time);
+        int n = snprintf(path, sizeof path, "%s/%s_frame_%04d.png", folder,
+                         clips[k].file, index);
+        GSN_CHECK(n > 0 && (size_t)n < sizeof path, GSN_ERR_INPUT,
+                  "path too long: %s", folder);
+        GSN_CALL(post_picture_write(grid, clips[k].picture, mesh->bounds, title,
+                                    path));
+        ++*written;
+    }
+    return GSN_OK;
+}
+
+/* The .pvd collection: each frame's file and time. */
+static int post_pvd_write(const char *path, hid_t results, int count)
+{
+    char temporary[GSN_PATH_SIZE];
+    GSN_CALL(gsn_path_temporary(temporary, sizeof temporary, path));
+    FILE *file = fopen(temporary, "w");
+    GSN_CHECK(file != NULL, GSN_ERR_IO, "cannot write %s: %s", temporary,
+              strerror(errno));
+    int rc = GSN_OK;
+    fprintf(file, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
+                  "version=\"0.1\" byte_order=\"LittleEndian\">\n"
+                  "  <Collection>\n");
+    for (int k = 0; k < count; ++k) {
+        char group_name[64];
+        snprintf(group_name, sizeof group_name, GSN_FRAME_GROUP_FORMAT, k);
+        hid_t group = H5Gopen2(results, group_name, H5P_DEFAULT);
+        GSN_CHECK_GOTO(group >= 0, rc, GSN_ERR_INPUT, done,
+                       "frame group '%s' is missing from the results file",
+                       group_name);
+        double time = 0.0;
+        rc = gsn_h5_attr_read_double(group, GSN_FRAME_ATTR_TIME, &time);
+        gsn_h5_close(&group);
+        GSN_CALL_GOTO(rc, rc, done);
+        fprintf(file,
+                "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" "
+                "file=\"vtu/frame_%04d.vtu\"/>\n",
+                time, k);
+    }
+    fprintf(file, "  </Collection>\n</VTKFile>\n");
+done:
+    if (fclose(file) != 0 && rc == GSN_OK)
+        rc = gsn_error_raise(GSN_ERR_IO, __FILE__, __LINE__, __func__,
+                             "cannot write %s: %s", temporary, strerror(errno));
+    if (rc == GSN_OK)
+        rc = gsn_file_commit(path);
+    if (rc != GSN_OK) {
+        gsn_file_discard(path);
+        return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
+                              "post_pvd_write");
+    }
+    return GSN_OK;
+}
+
+static int post_chart_write(const char *path, const char *title,
+                            const char *x_label, const char *y_label,
+                            int series_count, const char *const *names,
+                            const int *counts, const double *const *x,
+                            const double *const *y)
+{
+    char temporary[GSN_PATH_SIZE];
+    GSN_CALL(gsn_path_temporary(temporary, sizeof temporary, path));
+    int rc = gsn_vtk_chart_write(temporary, title, x_label, y_label,
+                                 series_count, names, counts, x, y);
+    if (rc == GSN_OK)
+        rc = gsn_file_commit(path);
+    if (rc != GSN_OK) {
+        gsn_file_discard(path);
+        return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
+                              "gsn_vtk_chart_write(...)");
+    }
+    return GSN_OK;
+}
+
+/* The load-settlement curve of a moving boundary entry: the reaction force
+ * along its prescribed velocity against the mean displacement of its
+ * particles along it, both as magnitudes (a footing pushed down plots up). */
+static int post_load_settlement(const struct gsn_history *history,
+                                const struct gsn_boundary *b,
+                                const char *case_name, const char *path,
+                                double *x, double *y, int *written)
+{
+    double direction[3] = {0.0, 0.0, 0.0}, norm = 0.0;
+    for (int j = 0; j < 3; ++j)
+        if (b->has_velocity[j]) {
+            direction[j] = b->velocity[j];
+            norm += direction[j] * direction[j];
+        }
+    if (!(norm > 0.0))
+        return GSN_OK; /* does not move */
+    norm = sqrt(norm);
+    static const char *const suffix[6] = {"ux", "uy", "uz", "fx", "fy", "fz"};
+    int column[6];
+    for (int k = 0; k < 6; ++k) {
+        char name[GSN_HISTORY_NAME_SIZE];
+        snprintf(name, sizeof name, "%s_%s", b->name, suffix[k]);
+        column[k] = gsn_history_column(history, name);
+        GSN_CHECK(column[k] >= 0, GSN_ERR_INPUT,
+                  "history.csv lacks the column %s of the boundary entry "
+                  "'%s'",
+                  name, b->name);
+    }
+    for (int r = 0; r < history->row_count; ++r) {
+        const double *row = history->values + (size_t)r * history->column_count;
+        double u = 0.0, f = 0.0;
+        for (int j = 0; j < 3; ++j) {
+            u += row[column[j]] * direction[j] / norm;
+            f += row[column[3 + j]] * direction[j] / norm;
+        }
+        x[r] = fabs(u);
+        y[r] = 1e-3 * fabs(f); /* N -> kN */
+    }
+    char title[TITLE_SIZE], x_label[TITLE_SIZE];
+    snprintf(title, sizeof title, "%s: load-settlement of '%s'", case_name,
+             b->name);
+    snprintf(x_label, sizeof x_label,
+             "mean displacement of '%s' along its motion [m]", b->name);
+    const char *names[1] = {b->name};
+    const double *xs[1] = {x}, *ys[1] = {y};
+    GSN_CALL(post_chart_write(path, title, x_label, "reaction force [kN]", 1,
+                              names, &history->row_count, xs, ys));
+    ++*written;
+    return GSN_OK;
+}
+
+/* The energies against time, in J, kJ or MJ by their size. */
+static int post_energies(const struct gsn_history *history,
+                         const char *case_name, const char *path,
+                         double *values, int *written)
+{
+    static const char *const columns[3] = {"kinetic_energy", "internal_energy",
+                                           "external_work"};
+    static const char *const names[3] = {"kinetic energy", "internal energy",
+                                         "external work"};
+    int time_column = gsn_history_column(history, "time");
+    GSN_CHECK(time_column >= 0, GSN_ERR_INPUT,
+              "history.csv lacks the column 'time'");
+    int n = history->row_count;
+    double *time = values, *energy[3];
+    gsn_history_copy_column(history, time_column, time);
+    double largest = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        int c = gsn_history_column(history, columns[k]);
+        GSN_CHECK(c >= 0, GSN_ERR_INPUT, "history.csv lacks the column '%s'",
+                  columns[k]);
+        energy[k] = values + (size_t)(k + 1) * n;
+        gsn_history_copy_column(history, c, energy[k]);
+        for (int r = 0; r < n; ++r)
+            largest = fmax(largest, fabs(energy[k][r]));
+    }
+    double scale = 1.0;
+    const char *unit = "J";
+    if (largest >= 1e6) {
+        scale = 1e-6;
+        unit = "MJ";
+    } else if (largest >= 1e3) {
+        scale = 1e-3;
+        unit = "kJ";
+    }
+    for (int k = 0; k < 3; ++k)
+        for (int r = 0; r < n; ++r)
+            energy[k][r] *= scale;
+    char title[TITLE_SIZE], y_label[TITLE_SIZE];
+    snprintf(title, sizeof title, "%s: energies", case_name);
+    snprintf(y_label, sizeof y_label, "energy [%s]", unit);
+    const int counts[3] = {n, n, n};
+    const double *xs[3] = {time, time, time};
+    const double *ys[3] = {energy[0], energy[1], energy[2]};
+    GSN_CALL(post_chart_write(path, title, "time [s]", y_label, 3, names,
+                              counts, xs, ys));
+    ++*written;
+    return GSN_OK;
+}
+
+/* The plots from history.csv. A missing history is noted, not an error. */
+static int post_plots(const char *outdir, const struct gsn_case *c,
+                      int have_case, const char *case_name, int *written)
+{
+    char path[GSN_PATH_SIZE], folder[GSN_PATH_SIZE];
+    GSN_CALL(gsn_path_join(path, sizeof path, outdir, "history.csv"));
+    if (access(path, F_OK) != 0) {
+        fprintf(stderr, "geoscni post: no plots: %s not found\n", path);
+        return GSN_OK;
+    }
+    struct gsn_history history;
+    GSN_CALL(gsn_history_read(path, &history));
+    int rc = GSN_OK;
+    double *values = NULL;
+    if (history.row_count == 0) {
+        fprintf(stderr, "geoscni post: no plots: %s has no rows\n", path);
+        goto done;
+    }
+    values = malloc(4 * (size_t)history.row_count * sizeof(double));
+    GSN_CHECK_GOTO(values != NULL, rc, GSN_ERR_MEMORY, done,
+                   "cannot allocate %d history rows", history.row_count);
+    GSN_CALL_GOTO(gsn_path_join(folder, sizeof folder, outdir, "plots"), rc,
+                  done);
+    GSN_CALL_GOTO(gsn_folder_prepare(folder), rc, done);
+    GSN_CALL_GOTO(gsn_path_join(path, sizeof path, folder, "energy.png"), rc,
+                  done);
+    GSN_CALL_GOTO(post_energies(&history, case_name, path, values, written), rc,
+                  done);
+    if (!have_case) {
+        fprintf(stderr,
+                "geoscni post: no load-settlement plots: the resolved case "
+                "in results.h5 could not be read\n");
+        goto done;
+    }
+    for (int b = 0; b < c->boundary_count; ++b) {
+        char name[GSN_PATH_SIZE];
+        snprintf(name, sizeof name, "load_settlement_%s.png",
+                 c->boundaries[b].name);
+        GSN_CALL_GOTO(gsn_path_join(path, sizeof path, folder, name), rc, done);
+        GSN_CALL_GOTO(post_load_settlement(&history, &c->boundaries[b],
+                                           case_name, path, values,
+                                           values + history.row_count, written),
+                      rc, done);
+    }
+done:
+    free(values);
+    gsn_history_free(&history);
+    return rc;
+}
+
+/* Removes the frame files a longer earlier run left beyond count. */
+static void post_remove_stale_frames(const char *outdir, int count)
+{
+    char path[GSN_PATH_SIZE];
+    for (int k = count;; ++k) {
+        if (post_frame_path(outdir, k, path, sizeof path) != GSN_OK) {
+            gsn_error_clear();
+            return;
+        }
+        if (unlink(path) != 0)
+            return;
+    }
+}
+
+struct post_state {
+    hid_t results;
+    struct post_mesh mesh;
+    struct gsn_frame frame;
+    struct gsn_vtk_grid *grid;
+    struct gsn_display display;
+    struct gsn_case *c;
+};
+
+static int post_run(const char *outdir, const struct gsn_post_options *o,
+                    struct post_state *s)
+{
+    char path[GSN_PATH_SIZE], folder[GSN_PATH_SIZE];
+    char case_name[CASE_NAME_SIZE];
+    GSN_CALL(gsn_path_join(path, sizeof path, outdir, "results.h5"));
+    GSN_CHECK(access(path, F_OK) == 0, GSN_ERR_INPUT,
+              "%s not found: post needs the results of 'geoscni solve' in "
+              "%s",
+              path, outdir);
+    GSN_CALL(gsn_h5_open(path, GSN_FILE_KIND_RESULTS, 0, &s->results));
+    int count = 0;
+    GSN_CALL(gsn_results_frame_count(s->results, &count));
+    GSN_CHECK(count > 0, GSN_ERR_INPUT, "%s holds no frames", path);
+    GSN_CALL(gsn_path_join(path, sizeof path, outdir, "model.h5"));
+    GSN_CHECK(access(path, F_OK) == 0, GSN_ERR_INPUT,
+              "%s not found: post needs the model of 'geoscni pre' in %s", path,
+              outdir);
+    GSN_CALL(post_mesh_read(path, &s->mesh));
+    size_t rows = 0;
+    hid_t first = H5Gopen2(s->results, "frames/000000", H5P_DEFAULT);
+    GSN_CHECK(first >= 0, GSN_ERR_INPUT, "results.h5 lacks frames/000000");
+    int rc =
+        gsn_h5_rows(first, &gsn_frame_fields[GSN_FRAME_DISPLACEMENT], &rows);
+    gsn_h5_close(&first);
+    GSN_CALL(rc);
+    GSN_CHECK(rows == (size_t)s->mesh.point_count, GSN_ERR_INPUT,
+              "%s/results.h5 has %zu particles but model.h5 has %d: they "
+              "come from different runs; run 'geoscni solve' again",
+              outdir, rows, s->mesh.point_count);
+    GSN_CALL(post_case_name(s->results, outdir, case_name, sizeof case_name));
+    int have_case = post_case_load(s->results, s->c);
+
+    int pictures = !o->no_pictures;
+    if (pictures) {
+        GSN_CALL(gsn_display_open(&s->display));
+        if (!s->display.available) {
+            fprintf(stderr,
+                    "geoscni post: skipped the pictures and plots (PNG): "
+                    "%s\n",
+                    s->display.reason);
+            pictures = 0;
+        }
+    }
+    GSN_CALL(gsn_path_join(folder, sizeof folder, outdir, "vtu"));
+    GSN_CALL(gsn_folder_prepare(folder));
+    char picture_folder[GSN_PATH_SIZE];
+    GSN_CALL(gsn_path_join(picture_folder, sizeof picture_folder, outdir,
+                           "pictures"));
+    if (pictures)
+        GSN_CALL(gsn_folder_prepare(picture_folder));
+
+    /* One frame at a time: read, write, free. */
+    int picture_count = 0, plot_count = 0;
+    GSN_CALL(gsn_frame_allocate(&s->frame, s->mesh.point_count));
+    for (int k = 0; k < count; ++k) {
+        GSN_CALL(gsn_results_frame_read(s->results, k, &s->frame));
+        GSN_CALL(gsn_vtk_grid_create(s->mesh.point_count, s->mesh.reference,
+                                     s->mesh.tetrahedron_count,
+                                     s->mesh.tetrahedra, &s->frame, &s->grid));
+        GSN_CALL(post_frame_path(outdir, k, path, sizeof path));
+        GSN_CALL(post_vtu_write(s->grid, path));
+        if (pictures)
+            GSN_CALL(post_frame_pictures(s->grid, &s->mesh, &s->frame, k, count,
+                                         picture_folder, case_name,
+                                         &picture_count));
+        gsn_vtk_grid_destroy(&s->grid);
+    }
+    post_remove_stale_frames(outdir, count);
+    char pvd[CASE_NAME_SIZE + 8];
+    snprintf(pvd, sizeof pvd, "%s.pvd", case_name);
+    GSN_CALL(gsn_path_join(path, sizeof path, outdir, pvd));
+    GSN_CALL(post_pvd_write(path, s->results, count));
+    if (!o->quiet)
+        printf("post: %s with %d frames (vtu/frame_0000.vtu to "
+               "frame_%04d.vtu)\n",
+               path, count, count - 1);
+    if (pictures) {
+        GSN_CALL(post_plots(outdir, s->c, have_case, case_name, &plot_count));
+        if (!o->quiet)
+            printf("post: %d pictures in %s, %d plots in %s/plots\n",
+                   picture_count, picture_folder, plot_count, outdir);
+    }
+    return GSN_OK;
+}
 
 int gsn_post_run(const char *outdir, const struct gsn_post_options *options)
 {
-    (void)options;
-    GSN_CHECK(0, GSN_ERR_INTERNAL,
-              "geoscni post is not implemented in this build yet (output "
-              "folder %s)",
-              outdir);
+    static const struct gsn_post_options defaults = {0, 0};
+    struct post_state s;
+    memset(&s, 0, sizeof s);
+    s.results = H5I_INVALID_HID;
+    s.c = calloc(1, sizeof *s.c); /* large: not on the stack */
+    GSN_CHECK(s.c != NULL, GSN_ERR_MEMORY, "cannot allocate a case");
+    int rc = post_run(outdir, options ? options : &defaults, &s);
+    gsn_vtk_grid_destroy(&s.grid);
+    gsn_frame_free(&s.frame);
+    post_mesh_free(&s.mesh);
+    gsn_h5_close(&s.results);
+    gsn_display_close(&s.display);
+    free(s.c);
+    if (rc != GSN_OK)
+        return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
+                              "post_run(outdir, options, &s)");
+    return GSN_OK;
 }

@@ -1,0 +1,30 @@
+/* history.csv (DESIGN.md, "What a run leaves"): a header of column names,
+ * then one row of numbers per output interval. */
+#ifndef GEOSCNI_POST_HISTORY_H
+#define GEOSCNI_POST_HISTORY_H
+
+enum { GSN_HISTORY_NAME_SIZE = 96 };
+
+struct gsn_history {
+    int column_count;
+    char (*names)[GSN_HISTORY_NAME_SIZE];
+    int row_count;
+    double *values; /* row_count x column_count, row-major */
+};
+
+/* Reads path. A last line cut short (no newline, wrong column count: a run
+ * still writing or stopped) is left out; any other malformed line is an
+ * input error naming path:line. */
+int gsn_history_read(const char *path, struct gsn_history *history);
+
+/* Frees the arrays and zeroes the struct; accepts a zeroed struct. */
+void gsn_history_free(struct gsn_history *history);
+
+/* Index of a column by name, or -1. */
+int gsn_history_column(const struct gsn_history *history, const char *name);
+
+/* Copies column into out (row_count values). */
+void gsn_history_copy_column(const struct gsn_history *history, int column,
+                             double *out);
+
+#endif

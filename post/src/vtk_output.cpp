@@ -1,0 +1,488 @@
+// post's VTK code: .vtu files, pictures of the deformed body (damage like
+// the seed paper's Figs. 6-7, fields on the half body clipped at its
+// mid-plane like Figs. 8-9) and line charts (load-settlement, energies).
+// C interface in vtk_output.h; every function catches every exception.
+#include "vtk_output.h"
+
+#include "geoscni/error.h"
+#include "geoscni/post.h"
+
+#include <X11/Xlib.h>
+
+#include <vtkAxis.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkCellType.h>
+#include <vtkChartLegend.h>
+#include <vtkChartXY.h>
+#include <vtkContextScene.h>
+#include <vtkContextView.h>
+#include <vtkDataSetSurfaceFilter.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkLookupTable.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPen.h>
+#include <vtkPlane.h>
+#include <vtkPlot.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+#include <vtkSmartPointer.h>
+#include <vtkTable.h>
+#include <vtkTableBasedClipDataSet.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkVersion.h>
+#include <vtkWindowToImageFilter.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <string>
+
+struct gsn_vtk_grid {
+    vtkSmartPointer<vtkUnstructuredGrid> grid;
+};
+
+namespace
+{
+
+// Picture and chart sizes in pixels.
+constexpr int PICTURE_WIDTH = 1200;
+constexpr int PICTURE_HEIGHT = 900;
+constexpr int CHART_WIDTH = 1000;
+constexpr int CHART_HEIGHT = 700;
+
+int raise_exception(const char *where, const char *what)
+{
+    return gsn_error_raise(GSN_ERR_LIBRARY, __FILE__, __LINE__, where,
+                           "VTK failed: %s", what);
+}
+
+// Writes what a render window shows to a PNG.
+int window_write_png(vtkRenderWindow *window, const char *path)
+{
+    vtkNew<vtkWindowToImageFilter> capture;
+    capture->SetInput(window);
+    capture->SetInputBufferTypeToRGB();
+    capture->ReadFrontBufferOff();
+    capture->Update();
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetFileName(path);
+    writer->SetInputConnection(capture->GetOutputPort());
+    writer->Write();
+    GSN_CHECK(writer->GetErrorCode() == 0, GSN_ERR_IO,
+              "cannot write the picture %s (VTK error code %lu)", path,
+              writer->GetErrorCode());
+    return GSN_OK;
+}
+
+void text_style(vtkTextProperty *text, int size, bool bold)
+{
+    text->SetColor(0.0, 0.0, 0.0);
+    text->SetFontFamilyToArial();
+    text->SetFontSize(size);
+    text->SetBold(bold);
+    text->SetItalic(false);
+    text->SetShadow(false);
+}
+
+// The blue-to-red rainbow of the seed paper's figures.
+vtkSmartPointer<vtkLookupTable> rainbow(double low, double high)
+{
+    auto table = vtkSmartPointer<vtkLookupTable>::New();
+    table->SetNumberOfTableValues(256);
+    table->SetHueRange(0.667, 0.0);
+    table->SetSaturationRange(1.0, 1.0);
+    table->SetValueRange(1.0, 1.0);
+    table->SetRange(low, high);
+    table->Build();
+    return table;
+}
+
+struct picture_spec {
+    const char *bar_title;
+    int field;     // frame field
+    int component; // column of the field
+    double scale;  // shown value = scale * field value
+    bool clip;
+};
+
+picture_spec picture_spec_of(enum gsn_vtk_picture picture)
+{
+    switch (picture) {
+    case GSN_VTK_PICTURE_CLIP_UX:
+        return {"u_x [m]", GSN_FRAME_DISPLACEMENT, 0, 1.0, true};
+    case GSN_VTK_PICTURE_CLIP_UY:
+        return {"u_y [m]", GSN_FRAME_DISPLACEMENT, 1, 1.0, true};
+    case GSN_VTK_PICTURE_CLIP_UZ:
+        return {"u_z [m]", GSN_FRAME_DISPLACEMENT, 2, 1.0, true};
+    case GSN_VTK_PICTURE_CLIP_EQUIVALENT_STRESS:
+        return {"equivalent stress [kPa]", GSN_FRAME_EQUIVALENT_STRESS, 0, 1e-3,
+                true};
+    default:
+        return {"damage [-]", GSN_FRAME_DAMAGE, 0, 1.0, false};
+    }
+}
+
+// Colour range of a field: damage always [0, 1] so frames compare; others
+// the field's own range, widened when it is (nearly) constant.
+void colour_range(const picture_spec &spec, vtkDataArray *shown,
+                  double range[2])
+{
+    if (spec.field == GSN_FRAME_DAMAGE) {
+        range[0] = 0.0;
+        range[1] = 1.0;
+        return;
+    }
+    shown->GetRange(range, 0);
+    double span = range[1] - range[0];
+    double size = std::max(std::fabs(range[0]), std::fabs(range[1]));
+    if (!(span > 1e-9 * size) || size == 0.0) {
+        double pad = size > 0.0 ? 0.05 * size : 1.0;
+        range[0] -= pad;
+        range[1] += pad;
+    }
+}
+
+int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
+                const double bounds[6], const char *title, const char *path)
+{
+    GSN_CHECK(picture >= 0 && picture < GSN_VTK_PICTURE_COUNT, GSN_ERR_INTERNAL,
+              "unknown picture %d", (int)picture);
+    picture_spec spec = picture_spec_of(picture);
+    vtkUnstructuredGrid *grid = g->grid;
+    vtkIdType n = grid->GetNumberOfPoints();
+
+    // The shown scalar, scaled to the bar's units, on a shallow copy.
+    vtkDataArray *source =
+        grid->GetPointData()->GetArray(gsn_frame_fields[spec.field].path);
+    GSN_CHECK(source != nullptr, GSN_ERR_INTERNAL, "grid lacks the array %s",
+              gsn_frame_fields[spec.field].path);
+    vtkNew<vtkDoubleArray> shown;
+    shown->SetName("shown");
+    shown->SetNumberOfTuples(n);
+    for (vtkIdType i = 0; i < n; ++i)
+        shown->SetValue(i,
+                        spec.scale * source->GetComponent(i, spec.component));
+    vtkNew<vtkUnstructuredGrid> copy;
+    copy->ShallowCopy(grid);
+    copy->GetPointData()->AddArray(shown);
+    copy->GetPointData()->SetActiveScalars("shown");
+
+    // The half y >= (ymin + ymax) / 2 of the reference body (Figs. 8-9).
+    double middle_y = 0.5 * (bounds[2] + bounds[3]);
+    vtkNew<vtkPlane> plane;
+    plane->SetOrigin(0.0, middle_y, 0.0);
+    plane->SetNormal(0.0, 1.0, 0.0);
+    vtkNew<vtkTableBasedClipDataSet> clip;
+    clip->SetClipFunction(plane);
+    clip->SetInputData(copy);
+    vtkNew<vtkDataSetSurfaceFilter> surface;
+    if (spec.clip)
+        surface->SetInputConnection(clip->GetOutputPort());
+    else
+        surface->SetInputData(copy);
+    surface->Update();
+
+    double range[2];
+    colour_range(spec, shown, range);
+    vtkSmartPointer<vtkLookupTable> table = rainbow(range[0], range[1]);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(surface->GetOutputPort());
+    mapper->SetLookupTable(table);
+    mapper->SetScalarModeToUsePointFieldData();
+    mapper->SelectColorArray("shown");
+    mapper->SetScalarRange(range);
+    mapper->ScalarVisibilityOn();
+    mapper->InterpolateScalarsBeforeMappingOn();
+    vtkNew<vtkActor> body;
+    body->SetMapper(mapper);
+    body->GetProperty()->SetAmbient(0.25);
+    body->GetProperty()->SetDiffuse(0.75);
+    body->GetProperty()->SetSpecular(0.0);
+
+    vtkNew<vtkScalarBarActor> bar;
+    bar->SetLookupTable(table);
+    bar->SetTitle(spec.bar_title);
+    bar->SetNumberOfLabels(6);
+    bar->SetLabelFormat(spec.field == GSN_FRAME_DAMAGE ? "%.1f" : "%-#.3g");
+    bar->SetOrientationToHorizontal();
+    bar->SetPosition(0.2, 0.03);
+    bar->SetWidth(0.6);
+    bar->SetHeight(0.12);
+    bar->SetBarRatio(0.3);
+    bar->UnconstrainedFontSizeOn();
+    text_style(bar->GetTitleTextProperty(), 24, true);
+    text_style(bar->GetLabelTextProperty(), 20, false);
+
+    vtkNew<vtkTextActor> heading;
+    heading->SetInput(title);
+    text_style(heading->GetTextProperty(), 26, true);
+    heading->GetTextProperty()->SetJustificationToCentered();
+    heading->GetTextProperty()->SetVerticalJustificationToTop();
+    heading->SetPosition(0.5 * PICTURE_WIDTH, PICTURE_HEIGHT - 20);
+
+    // The body on a renderer above the title and the colour bar, which sit
+    // on a full-window white renderer underneath (layer 0).
+    vtkNew<vtkRenderer> overlay;
+    overlay->SetBackground(1.0, 1.0, 1.0);
+    overlay->SetLayer(0);
+    overlay->AddActor2D(bar);
+    overlay->AddActor2D(heading);
+    vtkNew<vtkRenderer> renderer;
+    renderer->SetLayer(1);
+    renderer->SetViewport(0.0, 0.13, 1.0, 0.93);
+    renderer->AddActor(body);
+
+    // A fixed oblique camera from the slope face's side (x up-slope, z up),
+    // the same for every frame: set by the reference body's bounds.
+    double centre[3] = {0.5 * (bounds[0] + bounds[1]),
+                        0.5 * (bounds[2] + bounds[3]),
+                        0.5 * (bounds[4] + bounds[5])};
+    double direction[3] = {1.0, -1.35, 0.85};
+    if (spec.clip) {
+        direction[0] = 0.45;
+        direction[1] = -1.0;
+        direction[2] = 0.4;
+    }
+    vtkCamera *camera = renderer->GetActiveCamera();
+    camera->SetFocalPoint(centre);
+    camera->SetPosition(centre[0] + direction[0], centre[1] + direction[1],
+                        centre[2] + direction[2]);
+    camera->SetViewUp(0.0, 0.0, 1.0);
+    camera->SetViewAngle(25.0);
+    double view_bounds[6];
+    std::copy(bounds, bounds + 6, view_bounds);
+    renderer->ResetCamera(view_bounds);
+    camera->Zoom(1.15);
+
+    vtkNew<vtkRenderWindow> window;
+    window->SetOffScreenRendering(1);
+    window->SetSize(PICTURE_WIDTH, PICTURE_HEIGHT);
+    window->SetMultiSamples(8);
+    window->SetNumberOfLayers(2);
+    window->AddRenderer(overlay);
+    window->AddRenderer(renderer);
+    window->Render();
+    GSN_CALL(window_write_png(window, path));
+    return GSN_OK;
+}
+
+// Distinct colours for the chart's curves (Okabe-Ito).
+const unsigned char CURVE_COLOURS[][3] = {
+    {0, 114, 178}, {213, 94, 0},   {0, 158, 115},  {204, 121, 167},
+    {230, 159, 0}, {86, 180, 233}, {240, 228, 66}, {0, 0, 0}};
+
+int chart_write(const char *path, const char *title, const char *x_label,
+                const char *y_label, int series_count, const char *const *names,
+                const int *counts, const double *const *x,
+                const double *const *y)
+{
+    vtkNew<vtkContextView> view;
+    view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+    view->GetRenderWindow()->SetOffScreenRendering(1);
+    view->GetRenderWindow()->SetSize(CHART_WIDTH, CHART_HEIGHT);
+    view->GetRenderWindow()->SetMultiSamples(8);
+    vtkNew<vtkChartXY> chart;
+    view->GetScene()->AddItem(chart);
+    chart->SetTitle(title);
+    text_style(chart->GetTitleProperties(), 24, true);
+    chart->SetShowLegend(series_count > 1);
+    chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::LEFT);
+    chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
+    chart->GetLegend()->SetLabelSize(18);
+    const char *labels[2] = {x_label, y_label};
+    const int axes[2] = {vtkAxis::BOTTOM, vtkAxis::LEFT};
+    for (int a = 0; a < 2; ++a) {
+        vtkAxis *axis = chart->GetAxis(axes[a]);
+        axis->SetTitle(labels[a]);
+        text_style(axis->GetTitleProperties(), 20, true);
+        text_style(axis->GetLabelProperties(), 18, false);
+        axis->GetGridPen()->SetColor(210, 210, 210);
+    }
+    for (int s = 0; s < series_count; ++s) {
+        vtkNew<vtkTable> table;
+        vtkNew<vtkDoubleArray> xs, ys;
+        xs->SetName(x_label);
+        ys->SetName(names[s]);
+        xs->SetNumberOfTuples(counts[s]);
+        ys->SetNumberOfTuples(counts[s]);
+        for (int i = 0; i < counts[s]; ++i) {
+            xs->SetValue(i, x[s][i]);
+            ys->SetValue(i, y[s][i]);
+        }
+        table->AddColumn(xs);
+        table->AddColumn(ys);
+        vtkPlot *line = chart->AddPlot(vtkChart::LINE);
+        line->SetInputData(table, 0, 1);
+        const unsigned char *c =
+            CURVE_COLOURS[s % (sizeof CURVE_COLOURS / sizeof *CURVE_COLOURS)];
+        line->SetColor(c[0], c[1], c[2], 255);
+        line->SetWidth(3.0);
+        line->SetLabel(names[s]);
+    }
+    view->GetRenderWindow()->Render();
+    GSN_CALL(window_write_png(view->GetRenderWindow(), path));
+    return GSN_OK;
+}
+
+} // namespace
+
+extern "C" const char *gsn_post_vtk_version(void)
+{
+    return vtkVersion::GetVTKVersion();
+}
+
+extern "C" int gsn_vtk_display_usable(void)
+{
+    // VTK aborts when its X connection fails: check the display first.
+    Display *display = XOpenDisplay(nullptr);
+    if (!display)
+        return 0;
+    XCloseDisplay(display);
+    return 1;
+}
+
+extern "C" int gsn_vtk_grid_create(int point_count, const double *reference,
+                                   int tetrahedron_count, const int *tetrahedra,
+                                   const struct gsn_frame *frame,
+                                   struct gsn_vtk_grid **grid)
+{
+    *grid = nullptr;
+    GSN_CHECK(point_count == frame->particle_count, GSN_ERR_INTERNAL,
+              "frame of %d particles for a mesh of %d points",
+              frame->particle_count, point_count);
+    gsn_vtk_grid *g = nullptr;
+    try {
+        g = new gsn_vtk_grid;
+        g->grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+        const double *u = frame->field[GSN_FRAME_DISPLACEMENT];
+        vtkNew<vtkPoints> points;
+        points->SetDataTypeToDouble();
+        points->SetNumberOfPoints(point_count);
+        for (vtkIdType i = 0; i < point_count; ++i)
+            points->SetPoint(i, reference[3 * i] + u[3 * i],
+                             reference[3 * i + 1] + u[3 * i + 1],
+                             reference[3 * i + 2] + u[3 * i + 2]);
+        g->grid->SetPoints(points);
+
+        vtkNew<vtkIdTypeArray> offsets, connectivity;
+        offsets->SetNumberOfTuples(tetrahedron_count + 1);
+        connectivity->SetNumberOfTuples(4 * (vtkIdType)tetrahedron_count);
+        for (vtkIdType t = 0; t <= tetrahedron_count; ++t)
+            offsets->SetValue(t, 4 * t);
+        for (vtkIdType k = 0; k < 4 * (vtkIdType)tetrahedron_count; ++k)
+            connectivity->SetValue(k, tetrahedra[k]);
+        vtkNew<vtkCellArray> cells;
+        cells->SetData(offsets, connectivity);
+        g->grid->SetCells(VTK_TETRA, cells);
+
+        static const char *const voigt[6] = {"xx", "yy", "zz",
+                                             "xy", "yz", "xz"};
+        static const char *const xyz[3] = {"x", "y", "z"};
+        for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f) {
+            int columns = gsn_frame_fields[f].columns;
+            vtkNew<vtkDoubleArray> array;
+            array->SetName(gsn_frame_fields[f].path);
+            array->SetNumberOfComponents(columns);
+            array->SetNumberOfTuples(point_count);
+            std::copy(frame->field[f],
+                      frame->field[f] + (size_t)columns * point_count,
+                      array->GetPointer(0));
+            for (int c = 0; c < columns && columns > 1; ++c)
+                array->SetComponentName(c, columns == 6 ? voigt[c] : xyz[c]);
+            g->grid->GetPointData()->AddArray(array);
+        }
+        // The frame's time, which ParaView shows for a lone .vtu.
+        vtkNew<vtkDoubleArray> time;
+        time->SetName("TimeValue");
+        time->SetNumberOfTuples(1);
+        time->SetValue(0, frame->time);
+        g->grid->GetFieldData()->AddArray(time);
+    } catch (const std::exception &e) {
+        delete g;
+        return raise_exception(__func__, e.what());
+    } catch (...) {
+        delete g;
+        return raise_exception(__func__, "unknown exception");
+    }
+    *grid = g;
+    return GSN_OK;
+}
+
+extern "C" void gsn_vtk_grid_destroy(struct gsn_vtk_grid **grid)
+{
+    if (!grid)
+        return;
+    try {
+        delete *grid;
+    } catch (...) {
+        // Releasing VTK objects does not throw; nothing to recover.
+    }
+    *grid = nullptr;
+}
+
+extern "C" int gsn_vtk_grid_write(const struct gsn_vtk_grid *grid,
+                                  const char *path)
+{
+    try {
+        vtkNew<vtkXMLUnstructuredGridWriter> writer;
+        writer->SetFileName(path);
+        writer->SetInputData(grid->grid);
+        writer->SetDataModeToAppended();
+        writer->EncodeAppendedDataOff();
+        writer->SetCompressorTypeToZLib();
+        writer->SetHeaderTypeToUInt64();
+        GSN_CHECK(writer->Write() == 1 && writer->GetErrorCode() == 0,
+                  GSN_ERR_IO, "cannot write %s (VTK error code %lu)", path,
+                  writer->GetErrorCode());
+    } catch (const std::exception &e) {
+        return raise_exception(__func__, e.what());
+    } catch (...) {
+        return raise_exception(__func__, "unknown exception");
+    }
+    return GSN_OK;
+}
+
+extern "C" int gsn_vtk_grid_render(const struct gsn_vtk_grid *grid,
+                                   enum gsn_vtk_picture picture,
+                                   const double bounds[6], const char *title,
+                                   const char *path)
+{
+    try {
+        GSN_CALL(grid_render(grid, picture, bounds, title, path));
+    } catch (const std::exception &e) {
+        return raise_exception(__func__, e.what());
+    } catch (...) {
+        return raise_exception(__func__, "unknown exception");
+    }
+    return GSN_OK;
+}
+
+extern "C" int gsn_vtk_chart_write(const char *path, const char *title,
+                                   const char *x_label, const char *y_label,
+                                   int series_count, const char *const *names,
+                                   const int *counts, const double *const *x,
+                                   const double *const *y)
+{
+    try {
+        GSN_CALL(chart_write(path, title, x_label, y_label, series_count, names,
+                             counts, x, y));
+    } catch (const std::exception &e) {
+        return raise_exception(__func__, e.what());
+    } catch (...) {
+        return raise_exception(__func__, "unknown exception");
+    }
+    return GSN_OK;
+}
