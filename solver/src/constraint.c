@@ -243,6 +243,18 @@ int gsn_constraints_is_constrained(const struct gsn_constraints *constraints,
            constraints->slot[component][particle] >= 0;
 }
 
+int gsn_constraints_set_velocity(struct gsn_constraints *constraints,
+                                 int particle, int component, double velocity)
+{
+    GSN_CHECK(gsn_constraints_is_constrained(constraints, particle, component),
+              GSN_ERR_INTERNAL,
+              "component %d of particle %d is not constrained", component,
+              particle);
+    struct component_constraint *cc = &constraints->component[component];
+    cc->velocity[constraints->slot[component][particle]] = velocity;
+    return GSN_OK;
+}
+
 int gsn_constraints_count(const struct gsn_constraints *constraints)
 {
     return constraints->component[0].count + constraints->component[1].count +

@@ -54,6 +54,12 @@ int gsn_constraints_apply(struct gsn_constraints *constraints,
 int gsn_constraints_is_constrained(const struct gsn_constraints *constraints,
                                    int particle, int component);
 
+/* Replaces the prescribed velocity (m/s) of a constrained component of one
+ * particle, e.g. for a linear field v = A X on every boundary particle;
+ * GSN_ERR_INTERNAL if that component is not constrained. */
+int gsn_constraints_set_velocity(struct gsn_constraints *constraints,
+                                 int particle, int component, double velocity);
+
 /* Number of constrained (particle, component) pairs. */
 int gsn_constraints_count(const struct gsn_constraints *constraints);
 

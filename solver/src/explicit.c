@@ -386,21 +386,8 @@ static int report_failure(const struct gsn_explicit *e, const char *what)
     return GSN_OK;
 }
 
-int gsn_explicit_step(struct gsn_explicit *e)
+int gsn_explicit_update_stress(struct gsn_explicit *e)
 {
-    const double dt = e->dt;
-    const double t1 = (double)(e->step + 1) * dt;
-    const int n3 = 3 * e->particle_count;
-    memcpy(e->previous_displacement, e->displacement, n3 * sizeof(double));
-    for (int i = 0; i < n3; ++i) /* eq. (33) */
-        e->displacement[i] +=
-            dt * e->velocity[i] + 0.5 * dt * dt * e->acceleration[i];
-    if (e->constraints)
-        GSN_CALL(gsn_constraints_apply(
-            e->constraints, &e->quadrature->particle_values,
-            GSN_FIELD_DISPLACEMENT, t1, e->displacement));
-
-    /* Pass 1: kinematics and stress at every point. */
     int failed = 0;
     int batches = (e->main_point_count + CHUNK - 1) / CHUNK;
     memset(e->point_failed, 0, sizeof(int) * (size_t)e->point_count);
@@ -421,6 +408,25 @@ int gsn_explicit_step(struct gsn_explicit *e)
         GSN_CHECK(0, GSN_ERR_NUMERICAL, "step %ld: the stress update failed",
                   e->step + 1);
     }
+
+    return GSN_OK;
+}
+
+int gsn_explicit_step(struct gsn_explicit *e)
+{
+    const double dt = e->dt;
+    const double t1 = (double)(e->step + 1) * dt;
+    const int n3 = 3 * e->particle_count;
+    memcpy(e->previous_displacement, e->displacement, n3 * sizeof(double));
+    for (int i = 0; i < n3; ++i) /* eq. (33) */
+        e->displacement[i] +=
+            dt * e->velocity[i] + 0.5 * dt * dt * e->acceleration[i];
+    if (e->constraints)
+        GSN_CALL(gsn_constraints_apply(
+            e->constraints, &e->quadrature->particle_values,
+            GSN_FIELD_DISPLACEMENT, t1, e->displacement));
+
+    GSN_CALL(gsn_explicit_update_stress(e));
 
     /* Pass 2: internal force and acceleration at every particle. */
     gather_forces(e, e->f_int);

@@ -87,6 +87,12 @@ void gsn_explicit_add_traction(struct gsn_explicit *e,
  * the first-pass arrays) after the state was loaded from a checkpoint. */
 int gsn_explicit_refresh(struct gsn_explicit *e);
 
+/* Pass 1 alone: F, the objective stress update and P at every point for
+ * the increment from previous_displacement to displacement (both set by the
+ * caller). gsn_explicit_step calls it; tests drive it with prescribed
+ * motions. */
+int gsn_explicit_update_stress(struct gsn_explicit *e);
+
 /* One step from t_n to t_{n+1}. GSN_ERR_NUMERICAL names the step, the time
  * and the particle when a point inverts (det F <= 0), a value is not finite
  * or the material fails. */
