@@ -1,21 +1,27 @@
 /* Boxes of particles for the solver tests: a lattice (optionally jittered)
  * with its clipped Voronoi cells (gsn_pre_domains_box, surfaces xmin, xmax,
- * ymin, ymax, zmin, zmax), written as OUTDIR/model.h5 for geoscni solve. */
+ * ymin, ymax, zmin, zmax), either written as OUTDIR/model.h5 for geoscni
+ * solve or set up in memory with the solver's own pieces. */
 #ifndef GEOSCNI_SOLVER_FIXTURES_H
 #define GEOSCNI_SOLVER_FIXTURES_H
 
+#include "constraint.h"
+#include "explicit.h"
 #include "geoscni/error.h"
+#include "geoscni/kernels.h"
 #include "geoscni/model.h"
 #include "geoscni/pre.h"
+#include "material.h"
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* count[k] particles along axis k on [lo, hi], interior particles moved by
- * up to jitter x spacing (deterministic). Writes folder/model.h5. */
-static inline int fixture_box_model(const char *folder, const int count[3],
-                                    const double lo[3], const double hi[3],
-                                    double jitter, const struct gsn_case *c)
+ * up to jitter x spacing along each axis (deterministic). */
+static inline int fixture_box(const int count[3], const double lo[3],
+                              const double hi[3], double jitter,
+                              int facet_points, struct gsn_model *m)
 {
     int n = count[0] * count[1] * count[2];
     double *points = malloc(sizeof(double) * 3 * (size_t)n);
@@ -37,15 +43,72 @@ static inline int fixture_box_model(const char *folder, const int count[3],
                     points[at++] = x;
                 }
             }
-    struct gsn_model m;
-    int rc = gsn_pre_domains_box(points, n, lo, hi, c->facet_points, &m);
+    int rc = gsn_pre_domains_box(points, n, lo, hi, facet_points, m);
     free(points);
+    return rc;
+}
+
+/* The same box written as folder/model.h5. */
+static inline int fixture_box_model(const char *folder, const int count[3],
+                                    const double lo[3], const double hi[3],
+                                    double jitter, const struct gsn_case *c)
+{
+    struct gsn_model m;
+    int rc = fixture_box(count, lo, hi, jitter, c->facet_points, &m);
     if (rc != GSN_OK)
         return rc;
     char path[4096];
     snprintf(path, sizeof path, "%s/model.h5", folder);
     rc = gsn_model_write(path, &m, c);
     gsn_model_free(&m);
+    return rc;
+}
+
+/* The solver's pieces for a case on a box, in memory. */
+struct fixture_solver {
+    struct gsn_model model;
+    struct gsn_quadrature *quadrature;
+    struct gsn_material_model *material;
+    struct gsn_constraints *constraints;
+    struct gsn_explicit *loop;
+};
+
+static inline void fixture_solver_destroy(struct fixture_solver *s)
+{
+    gsn_explicit_destroy(&s->loop);
+    gsn_constraints_destroy(&s->constraints);
+    gsn_material_model_destroy(&s->material);
+    gsn_quadrature_destroy(&s->quadrature);
+    gsn_model_free(&s->model);
+}
+
+/* Builds the model, the quadrature of the case, its material, the
+ * constraints of its boundary entries (none if it has none) and the loop
+ * with time step dt. Prints the error chain on failure. */
+static inline int fixture_solver_create(const struct gsn_case *c,
+                                        const int count[3], const double lo[3],
+                                        const double hi[3], double jitter,
+                                        double dt, struct fixture_solver *s)
+{
+    memset(s, 0, sizeof *s);
+    struct gsn_kernel_options kernel;
+    gsn_kernel_options_from_case(c, &kernel);
+    int rc = fixture_box(count, lo, hi, jitter, c->facet_points, &s->model);
+    if (rc == GSN_OK)
+        rc = gsn_quadrature_create(&s->model, &kernel, NULL, 0, &s->quadrature);
+    if (rc == GSN_OK)
+        rc = gsn_material_model_create(gsn_material_name_for_case(&c->material),
+                                       &c->material, &s->material);
+    if (rc == GSN_OK && c->boundary_count > 0)
+        rc = gsn_constraints_create(
+            &s->model, c, &s->quadrature->particle_values, &s->constraints);
+    if (rc == GSN_OK)
+        rc = gsn_explicit_create(s->quadrature, s->material, s->constraints, c,
+                                 dt, &s->loop);
+    if (rc != GSN_OK) {
+        gsn_error_print(stderr);
+        fixture_solver_destroy(s);
+    }
     return rc;
 }
 
