@@ -40,7 +40,6 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
                         e->reaction,
                         e->stress,
                         e->state,
-                        e->deformation,
                         e->previous_displacement,
                         e->previous_external,
                         e->new_acceleration,
@@ -153,7 +152,6 @@ int gsn_explicit_create(const struct gsn_quadrature *quadrature,
         {(void **)&e->reaction, n3, sizeof(double)},
         {(void **)&e->stress, 6 * points, sizeof(double)},
         {(void **)&e->state, main * (size_t)e->state_size, sizeof(double)},
-        {(void **)&e->deformation, 9 * main, sizeof(double)},
         {(void **)&e->previous_displacement, n3, sizeof(double)},
         {(void **)&e->previous_external, n3, sizeof(double)},
         {(void **)&e->new_acceleration, n3, sizeof(double)},
@@ -213,12 +211,32 @@ static void point_deformation(const struct gsn_shape_rows *g, int p,
     }
 }
 
+/* F_p at t_{n+1} and the increment dH = sum_I (d_I - d_I^n) (x) g_pI,
+ * summed from the coefficient increments rather than as F_{n+1} - F_n,
+ * which would lose the increment's digits to the cancellation. */
+static void point_deformation_increment(const struct gsn_shape_rows *g, int p,
+                                        const double *d, const double *d0,
+                                        double F[9], double dH[9])
+{
+    for (int a = 0; a < 9; ++a) {
+        F[a] = (a % 4 == 0) ? 1.0 : 0.0;
+        dH[a] = 0.0;
+    }
+    for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
+        const double *u = &d[3 * g->index[k]], *u0 = &d0[3 * g->index[k]];
+        const double *grad = &g->gradient[3 * k];
+        for (int i = 0; i < 3; ++i) {
+            double du = u[i] - u0[i];
+            for (int j = 0; j < 3; ++j) {
+                F[3 * i + j] += u[i] * grad[j];
+                dH[3 * i + j] += du * grad[j];
+            }
+        }
+    }
+}
+
 int gsn_explicit_refresh(struct gsn_explicit *e)
 {
-    const struct gsn_shape_rows *g = &e->quadrature->gradient;
-#pragma omp parallel for schedule(static)
-    for (int p = 0; p < e->main_point_count; ++p)
-        point_deformation(g, p, e->displacement, &e->deformation[9 * p]);
     for (int i = 0; i < 3 * e->particle_count; ++i)
         e->previous_external[i] = e->f_ext[i] + e->reaction[i];
     return GSN_OK;
@@ -277,12 +295,10 @@ static int pass_main_batch(struct gsn_explicit *e, int p0, int p1, double *work)
     for (int p = p0; p < p1; ++p) {
         int b = p - p0;
         double *F1 = &Fnew[9 * b], Fmid[9], Fmid_inv[9], dH[9];
-        const double *F0 = &e->deformation[9 * p];
-        point_deformation(g, p, e->displacement, F1);
-        for (int a = 0; a < 9; ++a) {
-            Fmid[a] = 0.5 * (F0[a] + F1[a]);
-            dH[a] = F1[a] - F0[a];
-        }
+        point_deformation_increment(g, p, e->displacement,
+                                    e->previous_displacement, F1, dH);
+        for (int a = 0; a < 9; ++a)
+            Fmid[a] = F1[a] - 0.5 * dH[a];
         Jmid[b] = gsn_matrix_inverse(Fmid, Fmid_inv);
         double J1 = gsn_matrix_determinant(F1);
         if (!(J1 > 0.0) || !(Jmid[b] > 0.0) || !isfinite(J1)) {
@@ -314,7 +330,6 @@ static int pass_main_batch(struct gsn_explicit *e, int p0, int p1, double *work)
         e->point_energy[p] =
             voigt_contract(mean, &deps[6 * b]) * Jmid[b] * w[p];
         point_piola(&Fnew[9 * b], &e->stress[6 * p], w[p], &e->piola[9 * p]);
-        memcpy(&e->deformation[9 * p], &Fnew[9 * b], 9 * sizeof(double));
     }
     return GSN_OK;
 }
@@ -371,9 +386,9 @@ static int report_failure(const struct gsn_explicit *e, const char *what)
             continue;
         int particle = q->point_particle ? q->point_particle[p] : -1;
         const double *x = &q->point_position[3 * p];
-        double J = p < e->main_point_count
-                       ? gsn_matrix_determinant(&e->deformation[9 * p])
-                       : NAN;
+        double F[9];
+        point_deformation(&q->gradient, p, e->previous_displacement, F);
+        double J = gsn_matrix_determinant(F);
         return gsn_error_raise(
             GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
             "step %ld, t = %.6g s: %s at particle %d (reference position "

@@ -6,8 +6,9 @@
  *   boundary coefficients corrected so u(X_J) holds exactly  (constraint.h)
  *   pass 1, per integration point p (no writes shared between points):
  *     F = I + sum_I d_I (x) grad_X Psi_I(X_p)                 eq. (21)
- *     G = (F_{n+1} - F_n) F_{n+1/2}^-1, the incremental gradient on the
- *     mid-step configuration; stress by Hughes-Winget + material (Fig. 3)
+ *     G = dH F_{n+1/2}^-1 with dH = sum_I (d_I - d_I^n) (x) grad Psi_I and
+ *     F_{n+1/2} = F_{n+1} - dH/2: the incremental gradient on the mid-step
+ *     configuration; stress by Hughes-Winget + material (Fig. 3)
  *     P_p = det F sigma F^-T w_p  (so that B_I^T sigma det F V_p of eq. (29)
  *     is P_p grad_X Psi_I(X_p), with the chain rule of eq. (25))
  *   pass 2, per particle I, gathering over the points whose row holds I in
@@ -48,7 +49,6 @@ struct gsn_explicit {
     double *reaction;     /* n x 3: M a - f_ext + f_int where constrained */
     double *stress;       /* points x 6, Pa (nominal Cauchy) */
     double *state;        /* main points x state_size */
-    double *deformation;  /* main points x 9: F at t_n */
 
     double kinetic_energy, internal_energy, external_work; /* J */
 
@@ -83,8 +83,8 @@ void gsn_explicit_add_traction(struct gsn_explicit *e,
                                const struct gsn_model *m, int surface,
                                const double traction[3]);
 
-/* Recomputes everything derived from the state (F at the points from d,
- * the first-pass arrays) after the state was loaded from a checkpoint. */
+/* Recomputes what is derived from the state (the external force of the
+ * last step) after the state was loaded from a checkpoint. */
 int gsn_explicit_refresh(struct gsn_explicit *e);
 
 /* Pass 1 alone: F, the objective stress update and P at every point for
