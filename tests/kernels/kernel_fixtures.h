@@ -55,7 +55,9 @@ static inline int fixture_lattice(const int *size, double h, int gauss,
     /* facets: interior (n_d - 1) per line per direction, 2 per line on the
      * boundary */
     int facets = (nx + 1) * ny * nz + nx * (ny + 1) * nz + nx * ny * (nz + 1);
-    int rc = gsn_model_allocate(m, n, 0, facets, facets * gauss * gauss, 0, 0);
+    int cells = (nx - 1) * (ny - 1) * (nz - 1);
+    int rc = gsn_model_allocate(m, n, 0, facets, facets * gauss * gauss, 0,
+                                6 * cells);
     if (rc)
         return rc;
     int f = 0, qp = 0;
@@ -93,6 +95,23 @@ static inline int fixture_lattice(const int *size, double h, int gauss,
                 }
             }
     m->facet_count = f;
+    /* tetrahedra: each lattice cube split into 6 around its diagonal 0-7
+     * (vertex a = i + 2j + 4k of the cube) */
+    static const int kuhn[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
+                                   {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    const int stride[3] = {1, nx, nx * ny};
+    int t = 0;
+    for (int k = 0; k + 1 < nz; ++k)
+        for (int j = 0; j + 1 < ny; ++j)
+            for (int i = 0; i + 1 < nx; ++i)
+                for (int r = 0; r < 6; ++r, ++t) {
+                    int vertex = i + nx * (j + ny * k);
+                    m->tetrahedra[4 * t] = vertex;
+                    for (int s2 = 0; s2 < 3; ++s2) {
+                        vertex += stride[kuhn[r][s2]];
+                        m->tetrahedra[4 * t + s2 + 1] = vertex;
+                    }
+                }
     m->particle_surface_offset[0] = 0;
     return GSN_OK;
 }

@@ -46,6 +46,21 @@ static void check_lattice(int nx, int ny, int nz, int gauss)
         build(&m, GSN_INTEGRATION_GAUSS, GSN_STABILIZATION_NONE, bg, nbg);
     double r_gauss = fixture_patch_test(&m, gauss2);
 
+    /* Gauss on the model's tetrahedra (collapsed hexahedra): the weights
+     * add up to the volume (the Duffy map is exact for a constant) */
+    struct gsn_quadrature *gauss_tet =
+        build(&m, GSN_INTEGRATION_GAUSS, GSN_STABILIZATION_NONE, NULL, 0);
+    double r_tet = fixture_patch_test(&m, gauss_tet), vol = 0.0;
+    for (int p = 0; p < gauss_tet->point_count; ++p)
+        vol += gauss_tet->point_weight[p];
+    double box = (nx - 1) * (ny - 1) * (nz - 1) * h * h * h;
+    /* a sum of 48 x cells positive terms: round-off ~1e-14 */
+    TEST_REL(vol, box, 1e-13);
+    TEST_TRUE(r_tet > 1e-3);
+    printf("lattice %dx%dx%d: Gauss 2x2x2 on %d tetrahedra: weights add up "
+           "to the volume within %.1e, patch residual %.2e\n",
+           nx, ny, nz, m.tetrahedron_count, fabs(vol / box - 1.0), r_tet);
+    gsn_quadrature_destroy(&gauss_tet);
     printf("lattice %dx%dx%d, %d facet point(s): eq. (23) %.2e, eq. (24) "
            "%.2e at %d interior particles; patch residual SCNI %.2e, "
            "MSCNI %.2e, DNI %.2e, Gauss 2x2x2 %.2e\n",
