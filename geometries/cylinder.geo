@@ -1,7 +1,7 @@
 // A vertical cylinder of radius 1 m and height 2 m (curved boundary), for
 // tests: the mesh's faceted surface is the body the cells fill.
 SetFactory("OpenCASCADE");
-DefineConstant[h = {0.2, Name "Parameters/mesh size h"}];
+DefineConstant[h = 0.2]; // mesh size, m: geoscni sets it to particles.spacing
 Cylinder(1) = {0, 0, 0, 0, 0, 2, 1};
 Physical Surface("mantle") = {1};
 Physical Surface("top") = {2};

@@ -1,7 +1,7 @@
 // An L-shaped body (re-entrant edge along y at x = 1, z = 1): the
 // cross-section in x-z is [0,2] x [0,1] plus [0,1] x [1,2], 1 m wide in y.
 SetFactory("OpenCASCADE");
-DefineConstant[h = {0.15, Name "Parameters/mesh size h"}];
+DefineConstant[h = 0.15]; // mesh size, m: geoscni sets it to particles.spacing
 Box(1) = {0, 0, 0, 2, 1, 1};
 Box(2) = {0, 0, 1, 1, 1, 1};
 BooleanUnion(3) = {Volume{1}; Delete;}{Volume{2}; Delete;};

@@ -3,7 +3,7 @@
 // footing strip 6 <= x <= 9 on the crest across the whole width.
 // The paper's figures with the dimensions are not in its text; these are
 // geoscni's definitions. Built-in kernel, every surface named.
-DefineConstant[h = {0.3, Name "Parameters/mesh size h"}];
+DefineConstant[h = 0.3]; // mesh size, m: geoscni sets it to particles.spacing
 W = 10; // width in y
 
 // the cross-section at y = 0 and y = W; the crest split at x = 6 and x = 9

@@ -3,7 +3,7 @@
 // footing patch 6 <= x <= 9, 4.5 <= y <= 7.5 on the crest.
 // The paper's figures with the dimensions are not in its text; these are
 // geoscni's definitions. Built-in kernel, every surface named.
-DefineConstant[h = {0.3, Name "Parameters/mesh size h"}];
+DefineConstant[h = 0.3]; // mesh size, m: geoscni sets it to particles.spacing
 W = 12; // width in y
 
 For k In {0:1}

@@ -184,10 +184,6 @@ static int gmsh_open_geometry(const struct gsn_case *c)
     gmshOptionSetNumber("Mesh.MaxNumThreads2D", 1, &ierr);
     gmshOptionSetNumber("Mesh.MaxNumThreads3D", 1, &ierr);
     GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot set the gmsh options");
-    /* a .geo file's DefineConstant[h = ...] takes the spacing */
-    double h = 0.0 + c->particle_spacing;
-    gmshOnelabSetNumber("h", &h, 1, &ierr);
-    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot set the gmsh parameter h");
     gmshOpen(c->geometry, &ierr);
     GMSH_CHECK(ierr, GSN_ERR_INPUT, "%s:%d: gmsh cannot read the geometry %s",
                c->path, c->geometry_line, c->geometry);
@@ -663,7 +659,13 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
 
     double t0 = omp_get_wtime();
     int ierr = 0, rc = GSN_OK;
-    gmshInitialize(0, NULL, 0, &ierr);
+    /* a .geo file's DefineConstant[h = ...] takes the spacing: in gmsh 4.8
+     * only "-setnumber" does this (gmshOnelabSetNumber before gmshOpen does
+     * not reach the parser) */
+    char spacing[64];
+    snprintf(spacing, sizeof spacing, "%.17g", c->particle_spacing);
+    char *argv[] = {"geoscni", "-setnumber", "h", spacing, NULL};
+    gmshInitialize(4, argv, 0, &ierr);
     GSN_CHECK(ierr == 0, GSN_ERR_LIBRARY, "gmsh could not be initialized");
     struct mesh mesh;
     memset(&mesh, 0, sizeof mesh);
