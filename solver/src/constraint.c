@@ -25,7 +25,9 @@ struct component_constraint {
 
 struct gsn_constraints {
     int particle_count;
-    int *slot[3]; /* slot[c][I]: position of I in B_c, or -1 */
+    int surface_count;
+    int *surface_mask; /* per model surface: constrained components */
+    int *slot[3];      /* slot[c][I]: position of I in B_c, or -1 */
     struct component_constraint component[3];
 };
 
@@ -50,6 +52,7 @@ void gsn_constraints_destroy(struct gsn_constraints **constraints)
         free(cc->rhs);
         free(k->slot[c]);
     }
+    free(k->surface_mask);
     free(k);
     *constraints = NULL;
 }
@@ -188,7 +191,17 @@ int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
     GSN_CHECK_GOTO(k && entry_of && velocity_of, rc, GSN_ERR_MEMORY, done,
                    "out of memory");
     k->particle_count = m->particle_count;
+    k->surface_count = m->surface_count;
+    k->surface_mask = calloc((size_t)m->surface_count + 1, sizeof(int));
+    GSN_CHECK_GOTO(k->surface_mask, rc, GSN_ERR_MEMORY, done, "out of memory");
     GSN_CALL_GOTO(collect_prescriptions(m, c, entry_of, velocity_of), rc, done);
+    for (int b = 0; b < c->boundary_count; ++b) {
+        int surface = gsn_model_find_surface(m, c->boundaries[b].name);
+        for (int comp = 0; comp < 3; ++comp)
+            if (c->boundaries[b].fixed[comp] ||
+                c->boundaries[b].has_velocity[comp])
+                k->surface_mask[surface] |= 1 << comp;
+    }
     for (int comp = 0; comp < 3; ++comp)
         GSN_CALL_GOTO(
             component_build(k, comp, m, values, entry_of, velocity_of), rc,
@@ -253,6 +266,14 @@ int gsn_constraints_set_velocity(struct gsn_constraints *constraints,
     struct component_constraint *cc = &constraints->component[component];
     cc->velocity[constraints->slot[component][particle]] = velocity;
     return GSN_OK;
+}
+
+int gsn_constraints_surface_mask(const struct gsn_constraints *constraints,
+                                 int surface)
+{
+    if (surface < 0 || surface >= constraints->surface_count)
+        return 0;
+    return constraints->surface_mask[surface];
 }
 
 int gsn_constraints_count(const struct gsn_constraints *constraints)

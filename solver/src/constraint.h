@@ -60,6 +60,11 @@ int gsn_constraints_is_constrained(const struct gsn_constraints *constraints,
 int gsn_constraints_set_velocity(struct gsn_constraints *constraints,
                                  int particle, int component, double velocity);
 
+/* Components constrained on model surface `surface` by the case's
+ * boundary entries, as a bit mask (bit k: component k); 0 if none. */
+int gsn_constraints_surface_mask(const struct gsn_constraints *constraints,
+                                 int surface);
+
 /* Number of constrained (particle, component) pairs. */
 int gsn_constraints_count(const struct gsn_constraints *constraints);
 

@@ -52,6 +52,7 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     free(e->transpose_offset);
     free(e->transpose_point);
     free(e->transpose_entry);
+    free(e->boundary_point_mask);
     free(e);
     *handle = NULL;
 }
@@ -84,6 +85,73 @@ static int build_transpose(struct gsn_explicit *e)
     return GSN_OK;
 }
 
+/* The constrained components at every boundary quadrature point. */
+static int build_boundary_masks(struct gsn_explicit *e)
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    GSN_CALL(alloc_array((void **)&e->boundary_point_mask,
+                         (size_t)q->boundary_point_count, sizeof(int)));
+    for (int b = 0; b < q->boundary_point_count && e->constraints; ++b)
+        e->boundary_point_mask[b] = gsn_constraints_surface_mask(
+            e->constraints,
+            e->model->facet_surface[q->boundary_point_facet[b]]);
+    return GSN_OK;
+}
+
+/* The nominal traction P N / V_L at boundary quadrature point b, from the
+ * first-pass stress of the facet's cell (P includes the weight V_L). */
+static void boundary_traction(const struct gsn_explicit *e, int b, double t[3])
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    int f = q->boundary_point_facet[b];
+    int cell = e->model->facet_owner[f];
+    const double *P = &e->piola[9 * cell];
+    const double *N = &e->model->facet_normal[3 * f];
+    double scale = 1.0 / q->point_weight[cell];
+    for (int i = 0; i < 3; ++i)
+        t[i] = scale *
+               (P[3 * i] * N[0] + P[3 * i + 1] * N[1] + P[3 * i + 2] * N[2]);
+}
+
+/* The boundary term of the weak form on constrained surfaces (explicit.h):
+ * f_int_I -= Psi_I(x_q) t w_q for the constrained components. Serial, in
+ * boundary point order: the same sums whatever the thread count. */
+static void subtract_constrained_tractions(const struct gsn_explicit *e,
+                                           double *force)
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    const struct gsn_shape_rows *values = &q->boundary_values;
+    for (int b = 0; b < q->boundary_point_count; ++b) {
+        int mask = e->boundary_point_mask[b];
+        if (!mask)
+            continue;
+        double t[3];
+        boundary_traction(e, b, t);
+        double w = q->boundary_point_weight[b];
+        for (int k = values->offset[b]; k < values->offset[b + 1]; ++k)
+            for (int i = 0; i < 3; ++i)
+                if (mask & (1 << i))
+                    force[3 * values->index[k] + i] -=
+                        values->value[k] * t[i] * w;
+    }
+}
+
+void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
+                                int mask, double force[3])
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    force[0] = force[1] = force[2] = 0.0;
+    for (int b = 0; b < q->boundary_point_count; ++b) {
+        if (e->model->facet_surface[q->boundary_point_facet[b]] != surface)
+            continue;
+        double t[3];
+        boundary_traction(e, b, t);
+        for (int i = 0; i < 3; ++i)
+            if (mask & (1 << i))
+                force[i] += t[i] * q->boundary_point_weight[b];
+    }
+}
+
 /* m_I = rho0 sum_L Psi_I(X_L) V_L (eq. (28)), f_ext_I = m_I g. */
 static int build_mass(struct gsn_explicit *e, const struct gsn_case *c)
 {
@@ -111,7 +179,8 @@ static int build_mass(struct gsn_explicit *e, const struct gsn_case *c)
     return GSN_OK;
 }
 
-int gsn_explicit_create(const struct gsn_quadrature *quadrature,
+int gsn_explicit_create(const struct gsn_model *m,
+                        const struct gsn_quadrature *quadrature,
                         const struct gsn_material_model *material,
                         struct gsn_constraints *constraints,
                         const struct gsn_case *c, double dt,
@@ -125,6 +194,7 @@ int gsn_explicit_create(const struct gsn_quadrature *quadrature,
     struct gsn_explicit *e = calloc(1, sizeof *e);
     GSN_CHECK(e, GSN_ERR_MEMORY, "out of memory");
     int rc = GSN_OK;
+    e->model = m;
     e->quadrature = quadrature;
     e->material = material;
     e->constraints = constraints;
@@ -166,6 +236,7 @@ int gsn_explicit_create(const struct gsn_quadrature *quadrature,
             alloc_array(arrays[i].array, arrays[i].count, arrays[i].size), rc,
             fail);
     GSN_CALL_GOTO(build_transpose(e), rc, fail);
+    GSN_CALL_GOTO(build_boundary_masks(e), rc, fail);
     GSN_CALL_GOTO(build_mass(e, c), rc, fail);
     GSN_CALL_GOTO(gsn_material_initialize(material, main, e->stress, e->state),
                   rc, fail);
@@ -445,6 +516,8 @@ int gsn_explicit_step(struct gsn_explicit *e)
 
     /* Pass 2: internal force and acceleration at every particle. */
     gather_forces(e, e->f_int);
+    if (!e->skip_boundary_term)
+        subtract_constrained_tractions(e, e->f_int);
     double *a1 = e->new_acceleration;
     for (int i = 0; i < e->particle_count; ++i)
         for (int k = 0; k < 3; ++k) /* eq. (32) */

@@ -31,6 +31,7 @@
 #define ENERGY_CHECK_FIRST_STEP 20
 
 struct boundary_set {
+    int surface; /* index in the model */
     int count;
     int *particle; /* the particles on the entry's surface */
 };
@@ -87,6 +88,7 @@ static int build_boundary_sets(struct run *r)
                   r->c->path, r->c->boundaries[b].line,
                   r->c->boundaries[b].name, r->model_path);
         struct boundary_set *set = &r->boundary[b];
+        set->surface = surface;
         set->particle = malloc(sizeof(int) * (size_t)(m->particle_count + 1));
         GSN_CHECK(set->particle, GSN_ERR_MEMORY, "out of memory");
         for (int p = 0; p < m->particle_count; ++p)
@@ -154,10 +156,13 @@ static int write_history_row(struct run *r)
         const struct boundary_set *set = &r->boundary[b];
         double mean[3] = {0, 0, 0}, force[3] = {0, 0, 0};
         for (int s = 0; s < set->count; ++s)
-            for (int k = 0; k < 3; ++k) {
+            for (int k = 0; k < 3; ++k)
                 mean[k] += u[3 * set->particle[s] + k];
-                force[k] += e->reaction[3 * set->particle[s] + k];
-            }
+        /* The force the supports apply: the traction resultant on the
+         * constrained components of the surface (explicit.h). */
+        gsn_explicit_surface_force(
+            e, set->surface,
+            gsn_constraints_surface_mask(r->constraints, set->surface), force);
         for (int k = 0; k < 3; ++k)
             mean[k] = set->count ? mean[k] / set->count : 0.0;
         fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", mean[0], mean[1],
@@ -469,8 +474,9 @@ static int run_setup(struct run *r)
                                        &c->material, &r->material));
     GSN_CALL(gsn_constraints_create(
         &r->model, c, &r->quadrature->particle_values, &r->constraints));
-    GSN_CALL(gsn_explicit_create(r->quadrature, r->material, r->constraints, c,
-                                 c->time_step, &r->explicit_loop));
+    GSN_CALL(gsn_explicit_create(&r->model, r->quadrature, r->material,
+                                 r->constraints, c, c->time_step,
+                                 &r->explicit_loop));
     for (int b = 0; b < c->boundary_count; ++b)
         if (c->boundaries[b].has_traction[0])
             gsn_explicit_add_traction(

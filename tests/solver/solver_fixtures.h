@@ -103,8 +103,8 @@ static inline int fixture_solver_create(const struct gsn_case *c,
         rc = gsn_constraints_create(
             &s->model, c, &s->quadrature->particle_values, &s->constraints);
     if (rc == GSN_OK)
-        rc = gsn_explicit_create(s->quadrature, s->material, s->constraints, c,
-                                 dt, &s->loop);
+        rc = gsn_explicit_create(&s->model, s->quadrature, s->material,
+                                 s->constraints, c, dt, &s->loop);
     if (rc != GSN_OK) {
         gsn_error_print(stderr);
         fixture_solver_destroy(s);
