@@ -78,6 +78,14 @@ int main(int argc, char **argv)
                "per particle; %.0f bytes per particle (%.1f MB)\n",
                names[s], t, q->point_count, (double)main_nnz / n,
                (double)nnz / n, (double)bytes / n, bytes / 1e6);
+        size_t pv = (size_t)q->particle_values.offset[n];
+        size_t bv = (size_t)q->boundary_values.offset[q->boundary_point_count];
+        printf("               per particle: gradient rows %.0f B (28 B per "
+               "entry), points %.0f B, Psi at particles %.0f B (%.1f "
+               "entries), boundary points %.0f B\n",
+               (double)nnz * 28.0 / n + 4.0 * (q->point_count + 1) / n,
+               36.0 * q->point_count / n, 12.0 * pv / n + 4.0, (double)pv / n,
+               (12.0 * bv + 36.0 * q->boundary_point_count) / n);
         gsn_quadrature_destroy(&q);
     }
     gsn_model_free(&m);
