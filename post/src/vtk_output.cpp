@@ -19,6 +19,7 @@
 #include <vtkContextView.h>
 #include <vtkDataSetSurfaceFilter.h>
 #include <vtkDoubleArray.h>
+#include <vtkFeatureEdges.h>
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
 #include <vtkLookupTable.h>
@@ -31,7 +32,9 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
+#include <vtkRect.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
@@ -155,6 +158,32 @@ void colour_range(const picture_spec &spec, vtkDataArray *shown,
     }
 }
 
+// Round tick values (1, 2, 2.5 or 5 times a power of ten, about six of
+// them) for a colour range; unless fixed, the range is widened to the ticks
+// around it so the bar starts and ends on a labelled value.
+vtkSmartPointer<vtkDoubleArray> nice_ticks(double range[2], bool fixed)
+{
+    auto ticks = vtkSmartPointer<vtkDoubleArray>::New();
+    double span = range[1] - range[0];
+    double raw = span / 6.0;
+    double power = std::pow(10.0, std::floor(std::log10(raw)));
+    double step = 10.0 * power;
+    for (double factor : {1.0, 2.0, 2.5, 5.0})
+        if (factor * power >= raw) {
+            step = factor * power;
+            break;
+        }
+    if (!fixed) {
+        range[0] = step * std::floor(range[0] / step + 1e-9);
+        range[1] = step * std::ceil(range[1] / step - 1e-9);
+        span = range[1] - range[0];
+    }
+    for (double k = std::ceil(range[0] / step - 1e-9);
+         k * step <= range[1] + 1e-9 * span; k += 1.0)
+        ticks->InsertNextValue(std::fabs(k) < 0.5 ? 0.0 : k * step);
+    return ticks;
+}
+
 int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
                 const double bounds[6], const char *title, const char *path)
 {
@@ -181,7 +210,10 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
     copy->GetPointData()->SetActiveScalars("shown");
 
     // The half y >= (ymin + ymax) / 2 of the reference body (Figs. 8-9).
-    double middle_y = 0.5 * (bounds[2] + bounds[3]);
+    // Nudged by 1e-5 of the width so a plane of mesh nodes lying exactly on
+    // it (a structured mesh) does not leave zero-area slivers on the cut.
+    double middle_y =
+        0.5 * (bounds[2] + bounds[3]) + 1e-5 * (bounds[3] - bounds[2]);
     vtkNew<vtkPlane> plane;
     plane->SetOrigin(0.0, middle_y, 0.0);
     plane->SetNormal(0.0, 1.0, 0.0);
@@ -197,6 +229,8 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
 
     double range[2];
     colour_range(spec, shown, range);
+    vtkSmartPointer<vtkDoubleArray> ticks =
+        nice_ticks(range, spec.field == GSN_FRAME_DAMAGE);
     vtkSmartPointer<vtkLookupTable> table = rainbow(range[0], range[1]);
     vtkNew<vtkPolyDataMapper> mapper;
     mapper->SetInputConnection(surface->GetOutputPort());
@@ -212,19 +246,52 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
     body->GetProperty()->SetDiffuse(0.75);
     body->GetProperty()->SetSpecular(0.0);
 
+    // The body's sharp edges (crest, toe, cut) as thin dark lines.
+    // Triangles are first ordered consistently: the tetrahedra's own
+    // orientation may vary, and a flipped neighbour reads as a sharp edge.
+    vtkNew<vtkPolyDataNormals> oriented;
+    oriented->SetInputConnection(surface->GetOutputPort());
+    oriented->ConsistencyOn();
+    oriented->SplittingOff();
+    oriented->ComputeCellNormalsOff();
+    vtkNew<vtkFeatureEdges> edges;
+    edges->SetInputConnection(oriented->GetOutputPort());
+    edges->SetFeatureAngle(30.0);
+    edges->FeatureEdgesOn();
+    edges->BoundaryEdgesOff();
+    edges->NonManifoldEdgesOff();
+    edges->ManifoldEdgesOff();
+    edges->ColoringOff();
+    vtkNew<vtkPolyDataMapper> edge_mapper;
+    edge_mapper->SetInputConnection(edges->GetOutputPort());
+    edge_mapper->ScalarVisibilityOff();
+    edge_mapper->SetResolveCoincidentTopologyToPolygonOffset();
+    vtkNew<vtkActor> outline;
+    outline->SetMapper(edge_mapper);
+    outline->GetProperty()->SetColor(0.15, 0.15, 0.15);
+    outline->GetProperty()->SetLineWidth(1.5);
+    outline->GetProperty()->LightingOff();
+
     vtkNew<vtkScalarBarActor> bar;
     bar->SetLookupTable(table);
-    bar->SetTitle(spec.bar_title);
-    bar->SetNumberOfLabels(6);
-    bar->SetLabelFormat(spec.field == GSN_FRAME_DAMAGE ? "%.1f" : "%-#.3g");
+    bar->SetUseCustomLabels(true);
+    bar->SetCustomLabels(ticks);
+    bar->SetLabelFormat("%g");
     bar->SetOrientationToHorizontal();
-    bar->SetPosition(0.2, 0.03);
-    bar->SetWidth(0.6);
+    bar->SetPosition(0.34, 0.03);
+    bar->SetWidth(0.58);
     bar->SetHeight(0.12);
     bar->SetBarRatio(0.3);
     bar->UnconstrainedFontSizeOn();
-    text_style(bar->GetTitleTextProperty(), 24, true);
     text_style(bar->GetLabelTextProperty(), 20, false);
+
+    // The bar's title left of it (VTK puts it over the middle label).
+    vtkNew<vtkTextActor> bar_title;
+    bar_title->SetInput(spec.bar_title);
+    text_style(bar_title->GetTextProperty(), 24, true);
+    bar_title->GetTextProperty()->SetJustificationToRight();
+    bar_title->GetTextProperty()->SetVerticalJustificationToCentered();
+    bar_title->SetPosition(0.32 * PICTURE_WIDTH, 44);
 
     vtkNew<vtkTextActor> heading;
     heading->SetInput(title);
@@ -240,10 +307,12 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
     overlay->SetLayer(0);
     overlay->AddActor2D(bar);
     overlay->AddActor2D(heading);
+    overlay->AddActor2D(bar_title);
     vtkNew<vtkRenderer> renderer;
     renderer->SetLayer(1);
     renderer->SetViewport(0.0, 0.13, 1.0, 0.93);
     renderer->AddActor(body);
+    renderer->AddActor(outline);
 
     // A fixed oblique camera from the slope face's side (x up-slope, z up),
     // the same for every frame: set by the reference body's bounds.
@@ -265,7 +334,7 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
     double view_bounds[6];
     std::copy(bounds, bounds + 6, view_bounds);
     renderer->ResetCamera(view_bounds);
-    camera->Zoom(1.15);
+    camera->Zoom(spec.clip ? 1.3 : 1.1);
 
     vtkNew<vtkRenderWindow> window;
     window->SetOffScreenRendering(1);
@@ -297,6 +366,11 @@ int chart_write(const char *path, const char *title, const char *x_label,
     vtkNew<vtkChartXY> chart;
     view->GetScene()->AddItem(chart);
     chart->SetTitle(title);
+    // The axes' corners in pixels, leaving room for the title, the axis
+    // titles and the last tick label.
+    chart->SetLayoutStrategy(vtkChart::AXES_TO_RECT);
+    chart->SetSize(
+        vtkRectf(110.0f, 90.0f, CHART_WIDTH - 160.0f, CHART_HEIGHT - 160.0f));
     text_style(chart->GetTitleProperties(), 24, true);
     chart->SetShowLegend(series_count > 1);
     chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::LEFT);
