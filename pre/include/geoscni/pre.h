@@ -16,6 +16,11 @@ struct gsn_pre_options {
     int force;   /* allow more than GSN_DEFAULT_MAX_PARTICLES particles */
     int threads; /* 0: OpenMP's default */
     int quiet;   /* no progress output */
+    /* the same input gives the same particles: gmsh's Delaunay mesher on one
+     * thread (about 5 times slower) instead of HXT, which varies from run to
+     * run in gmsh 4.8; also set by the environment variable
+     * GEOSCNI_REPRODUCIBLE=1 */
+    int reproducible;
 };
 
 /* Builds OUTDIR/model.h5 from the case: meshes the geometry with gmsh,
