@@ -14,9 +14,15 @@ enum { CHUNK = 64 };
 /* Doubles of per-thread work per batch: G, strain increment, old stress,
  * new F, mid-step determinant. */
 enum { CHUNK_WORK = CHUNK * (9 + 6 + 6 + 9 + 1) };
-/* Power iterations of the stable-step estimate; the Rayleigh quotient is
- * within 1% of lambda_max well before this on the bodies tested. */
-enum { POWER_ITERATIONS = 200 };
+/* Power iterations of the stable-step estimate: at least the first, at most
+ * the second; it stops when the Rayleigh quotient moved less than
+ * POWER_TOLERANCE (relative) over the last POWER_WINDOW iterations. */
+enum {
+    POWER_MIN_ITERATIONS = 30,
+    POWER_MAX_ITERATIONS = 300,
+    POWER_WINDOW = 10
+};
+#define POWER_TOLERANCE 1e-3
 
 static int alloc_array(void **array, size_t count, size_t size)
 {
@@ -38,6 +44,7 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
                         e->f_ext,
                         e->f_int,
                         e->reaction,
+                        e->boundary_force,
                         e->stress,
                         e->state,
                         e->previous_displacement,
@@ -114,13 +121,14 @@ static void boundary_traction(const struct gsn_explicit *e, int b, double t[3])
 }
 
 /* The boundary term of the weak form on constrained surfaces (explicit.h):
- * f_int_I -= Psi_I(x_q) t w_q for the constrained components. Serial, in
- * boundary point order: the same sums whatever the thread count. */
-static void subtract_constrained_tractions(const struct gsn_explicit *e,
-                                           double *force)
+ * force_I = sum_q Psi_I(x_q) t w_q for the constrained components, to be
+ * taken off f_int. Serial, in boundary point order: the same sums whatever
+ * the thread count. */
+static void boundary_term(const struct gsn_explicit *e, double *force)
 {
     const struct gsn_quadrature *q = e->quadrature;
     const struct gsn_shape_rows *values = &q->boundary_values;
+    memset(force, 0, sizeof(double) * 3 * (size_t)e->particle_count);
     for (int b = 0; b < q->boundary_point_count; ++b) {
         int mask = e->boundary_point_mask[b];
         if (!mask)
@@ -131,7 +139,7 @@ static void subtract_constrained_tractions(const struct gsn_explicit *e,
         for (int k = values->offset[b]; k < values->offset[b + 1]; ++k)
             for (int i = 0; i < 3; ++i)
                 if (mask & (1 << i))
-                    force[3 * values->index[k] + i] -=
+                    force[3 * values->index[k] + i] +=
                         values->value[k] * t[i] * w;
     }
 }
@@ -220,6 +228,7 @@ int gsn_explicit_create(const struct gsn_model *m,
         {(void **)&e->f_ext, n3, sizeof(double)},
         {(void **)&e->f_int, n3, sizeof(double)},
         {(void **)&e->reaction, n3, sizeof(double)},
+        {(void **)&e->boundary_force, n3, sizeof(double)},
         {(void **)&e->stress, 6 * points, sizeof(double)},
         {(void **)&e->state, main * (size_t)e->state_size, sizeof(double)},
         {(void **)&e->previous_displacement, n3, sizeof(double)},
@@ -264,7 +273,8 @@ void gsn_explicit_add_traction(struct gsn_explicit *e,
                     values->value[k] * traction[c] * w;
     }
     for (int i = 0; i < 3 * e->particle_count; ++i)
-        e->previous_external[i] = e->f_ext[i] + e->reaction[i];
+        e->previous_external[i] =
+            e->f_ext[i] + e->reaction[i] + e->boundary_force[i];
 }
 
 /* F_p = I + sum_I d_I (x) g_pI (eq. (21)). */
@@ -304,13 +314,6 @@ static void point_deformation_increment(const struct gsn_shape_rows *g, int p,
             }
         }
     }
-}
-
-int gsn_explicit_refresh(struct gsn_explicit *e)
-{
-    for (int i = 0; i < 3 * e->particle_count; ++i)
-        e->previous_external[i] = e->f_ext[i] + e->reaction[i];
-    return GSN_OK;
 }
 
 /* Small-strain elastic stress of the strain eps (Voigt, tensor shear). */
@@ -472,6 +475,24 @@ static int report_failure(const struct gsn_explicit *e, const char *what)
     return GSN_OK;
 }
 
+int gsn_explicit_refresh(struct gsn_explicit *e)
+{
+    const struct gsn_shape_rows *g = &e->quadrature->gradient;
+    const double *w = e->quadrature->point_weight;
+#pragma omp parallel for schedule(static)
+    for (int p = 0; p < e->main_point_count; ++p) {
+        double F[9];
+        point_deformation(g, p, e->displacement, F);
+        point_piola(F, &e->stress[6 * p], w[p], &e->piola[9 * p]);
+    }
+    if (!e->skip_boundary_term)
+        boundary_term(e, e->boundary_force);
+    for (int i = 0; i < 3 * e->particle_count; ++i)
+        e->previous_external[i] =
+            e->f_ext[i] + e->reaction[i] + e->boundary_force[i];
+    return GSN_OK;
+}
+
 int gsn_explicit_update_stress(struct gsn_explicit *e)
 {
     int failed = 0;
@@ -516,8 +537,11 @@ int gsn_explicit_step(struct gsn_explicit *e)
 
     /* Pass 2: internal force and acceleration at every particle. */
     gather_forces(e, e->f_int);
-    if (!e->skip_boundary_term)
-        subtract_constrained_tractions(e, e->f_int);
+    if (!e->skip_boundary_term) {
+        boundary_term(e, e->boundary_force);
+        for (int i = 0; i < n3; ++i)
+            e->f_int[i] -= e->boundary_force[i];
+    }
     double *a1 = e->new_acceleration;
     for (int i = 0; i < e->particle_count; ++i)
         for (int k = 0; k < 3; ++k) /* eq. (32) */
@@ -546,7 +570,8 @@ int gsn_explicit_step(struct gsn_explicit *e)
             e->reaction[at] = constrained ? e->mass[i] * e->acceleration[at] -
                                                 e->f_ext[at] + e->f_int[at]
                                           : 0.0;
-            double total = e->f_ext[at] + e->reaction[at];
+            double total =
+                e->f_ext[at] + e->reaction[at] + e->boundary_force[at];
             external += 0.5 * (e->previous_external[at] + total) *
                         (e->displacement[at] - e->previous_displacement[at]);
             e->previous_external[at] = total;
@@ -602,8 +627,8 @@ int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt)
         state = state * 1664525u + 1013904223u;
         x[i] = (double)(state >> 8) / 16777216.0 - 0.5;
     }
-    double lambda = 0.0;
-    for (int iteration = 0; iteration < POWER_ITERATIONS; ++iteration) {
+    double lambda = 0.0, history[POWER_WINDOW] = {0};
+    for (int iteration = 0; iteration < POWER_MAX_ITERATIONS; ++iteration) {
         /* Normalize in the mass norm, then y = M^-1 K x. */
         double norm = 0.0;
         for (int i = 0; i < n; ++i)
@@ -619,6 +644,11 @@ int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt)
         for (int i = 0; i < 3 * n; ++i)
             rayleigh += x[i] * y[i];
         lambda = rayleigh; /* x^T K x / x^T M x with x^T M x = 1 */
+        double earlier = history[iteration % POWER_WINDOW];
+        history[iteration % POWER_WINDOW] = lambda;
+        if (iteration >= POWER_MIN_ITERATIONS &&
+            fabs(lambda - earlier) <= POWER_TOLERANCE * lambda)
+            break;
         for (int i = 0; i < n; ++i)
             for (int k = 0; k < 3; ++k)
                 x[3 * i + k] = y[3 * i + k] / e->mass[i];
@@ -629,6 +659,9 @@ int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt)
 done:
     free(x);
     free(y);
+    /* The iteration used the first-pass arrays as scratch. */
+    if (rc == GSN_OK)
+        rc = gsn_explicit_refresh(e);
     return rc;
 }
 

@@ -52,15 +52,16 @@ struct gsn_explicit {
     long step;
     double time; /* step * dt, s */
 
-    double *mass;         /* n, kg */
-    double *displacement; /* n x 3 coefficients d_I, m */
-    double *velocity;     /* n x 3, m/s */
-    double *acceleration; /* n x 3, m/s^2 */
-    double *f_ext;        /* n x 3 body force, N */
-    double *f_int;        /* n x 3 internal force, N */
-    double *reaction;     /* n x 3: M a - f_ext + f_int where constrained */
-    double *stress;       /* points x 6, Pa (nominal Cauchy) */
-    double *state;        /* main points x state_size */
+    double *mass;           /* n, kg */
+    double *displacement;   /* n x 3 coefficients d_I, m */
+    double *velocity;       /* n x 3, m/s */
+    double *acceleration;   /* n x 3, m/s^2 */
+    double *f_ext;          /* n x 3 body force, N */
+    double *f_int;          /* n x 3 internal force, N */
+    double *reaction;       /* n x 3: M a - f_ext + f_int where constrained */
+    double *boundary_force; /* n x 3: the boundary term, taken off f_int */
+    double *stress;         /* points x 6, Pa (nominal Cauchy) */
+    double *state;          /* main points x state_size */
 
     double kinetic_energy, internal_energy, external_work; /* J */
 

@@ -23,12 +23,14 @@
 #include <time.h>
 #include <unistd.h>
 
-/* A run whose energy balance KE + W_int - W_ext drifts by more than this
- * fraction of the largest of the three is unstable. Central differences
- * conserve energy to O(dt^2); a stable run stays far below. */
+/* A run whose energy balance KE + W_int - W_ext drifts from its value at
+ * step ENERGY_CHECK_FIRST_STEP by more than this fraction of the largest of
+ * the three is unstable. Central differences conserve energy to O(dt^2); a
+ * stable run stays far below. The balance is taken from that step on
+ * because a prescribed velocity starts with a jump, an impact whose work
+ * the trapezoidal rule of W_ext does not see (a constant offset). */
 #define ENERGY_BALANCE_TOLERANCE 0.05
-/* Steps before the energy check starts (energies start from zero). */
-#define ENERGY_CHECK_FIRST_STEP 20
+#define ENERGY_CHECK_FIRST_STEP 10
 
 struct boundary_set {
     int surface; /* index in the model */
@@ -58,6 +60,7 @@ struct run {
     int frame_count;
     double next_frame_time;
     int damage_offset, plastic_offset;
+    double energy_baseline; /* J, see ENERGY_CHECK_FIRST_STEP */
 };
 
 static double now_seconds(void)
@@ -339,14 +342,17 @@ static void print_progress(const struct run *r, double started, long first,
     fflush(stderr);
 }
 
-static int check_energy(const struct run *r)
+static int check_energy(struct run *r)
 {
     const struct gsn_explicit *e = r->explicit_loop;
     double scale = fmax(fmax(e->kinetic_energy, fabs(e->internal_energy)),
                         fabs(e->external_work));
     double balance = e->kinetic_energy + e->internal_energy - e->external_work;
-    GSN_CHECK(e->step < ENERGY_CHECK_FIRST_STEP || scale <= 0.0 ||
-                  fabs(balance) <= ENERGY_BALANCE_TOLERANCE * scale,
+    if (e->step <= ENERGY_CHECK_FIRST_STEP)
+        r->energy_baseline = balance;
+    GSN_CHECK(e->step <= ENERGY_CHECK_FIRST_STEP || scale <= 0.0 ||
+                  fabs(balance - r->energy_baseline) <=
+                      ENERGY_BALANCE_TOLERANCE * scale,
               GSN_ERR_NUMERICAL,
               "step %ld, t = %.6g s: energy is not conserved (kinetic %.4g J "
               "+ internal %.4g J - external work %.4g J = %.4g J): the run "
