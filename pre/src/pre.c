@@ -295,7 +295,9 @@ static int estimate_volume(const struct gsn_case *c, double *volume)
     double diagonal = sqrt((box[3] - box[0]) * (box[3] - box[0]) +
                            (box[4] - box[1]) * (box[4] - box[1]) +
                            (box[5] - box[2]) * (box[5] - box[2]));
-    GSN_CALL(gmsh_set_size(0.0, diagonal / COARSE_DIVISIONS));
+    /* the minimum overrides the sizes of the geometry's points */
+    GSN_CALL(gmsh_set_size(diagonal / COARSE_DIVISIONS,
+                           diagonal / COARSE_DIVISIONS));
     GSN_CALL(gmsh_generate(c, 1));
     GSN_CALL(gmsh_mesh_volume(volume));
     gmshModelMeshClear(NULL, 0, &ierr);
@@ -556,27 +558,45 @@ done:
     return rc;
 }
 
-static int pre_check_boundaries(const struct gsn_case *c, const struct mesh *m)
+/* Every boundary of the case names a physical surface of the geometry:
+ * checked right after gmsh reads it, before any meshing. */
+static int pre_check_boundaries(const struct gsn_case *c)
 {
-    for (int b = 0; b < c->boundary_count; ++b) {
+    int *groups = NULL, ierr = 0;
+    size_t group_count = 0;
+    gmshModelGetPhysicalGroups(&groups, &group_count, 2, &ierr);
+    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot list the physical surfaces");
+    char names[1024] = "";
+    size_t used = 0;
+    int missing = -1;
+    for (int b = 0; b < c->boundary_count && missing < 0; ++b) {
         int found = 0;
-        for (int s = 0; s < m->surface_count && !found; ++s)
-            found = strcmp(m->surface_name[s], c->boundaries[b].name) == 0;
-        if (found)
-            continue;
-        char names[1024] = "";
-        size_t used = 0;
-        for (int s = 0; s < m->surface_count && used + 1 < sizeof names; ++s) {
-            int w = snprintf(names + used, sizeof names - used, "%s%s",
-                             s ? ", " : "", m->surface_name[s]);
-            used += w > 0 ? (size_t)w : 0;
+        used = 0;
+        names[0] = '\0';
+        for (size_t g = 0; g + 1 < group_count && !found; g += 2) {
+            char *name = NULL;
+            gmshModelGetPhysicalName(2, groups[g + 1], &name, &ierr);
+            if (ierr == 0 && name) {
+                found = strcmp(name, c->boundaries[b].name) == 0;
+                if (used + 1 < sizeof names) {
+                    int w = snprintf(names + used, sizeof names - used, "%s%s",
+                                     used ? ", " : "",
+                                     name[0] ? name : "(unnamed)");
+                    used += w > 0 ? (size_t)w : 0;
+                }
+            }
+            gmshFree(name);
         }
-        GSN_CHECK(0, GSN_ERR_INPUT,
-                  "%s:%d: boundary '%s' names no physical surface of %s "
-                  "(it has: %s)",
-                  c->path, c->boundaries[b].line, c->boundaries[b].name,
-                  c->geometry, m->surface_count ? names : "none");
+        if (!found)
+            missing = b;
     }
+    gmshFree(groups);
+    GSN_CHECK(missing < 0, GSN_ERR_INPUT,
+              "%s:%d: boundary '%s' names no physical surface of %s (it "
+              "has: %s)",
+              c->path, missing >= 0 ? c->boundaries[missing].line : 0,
+              missing >= 0 ? c->boundaries[missing].name : "", c->geometry,
+              used ? names : "none");
     return GSN_OK;
 }
 
@@ -585,6 +605,7 @@ static int pre_mesh(const struct gsn_case *c,
                     double *estimate)
 {
     GSN_CALL(gmsh_open_geometry(c));
+    GSN_CALL(pre_check_boundaries(c));
     double volume = 0.0;
     GSN_CALL(estimate_volume(c, &volume));
     double h = c->particle_spacing;
@@ -610,7 +631,6 @@ static int pre_mesh(const struct gsn_case *c,
         face_hash_create(&surface_of, (size_t)m->tetrahedron_count + 1024), rc,
         done);
     GSN_CALL_GOTO(mesh_read_surfaces(m, index, limit, &surface_of), rc, done);
-    GSN_CALL_GOTO(pre_check_boundaries(c, m), rc, done);
     GSN_CALL_GOTO(mesh_label_faces(m, &surface_of), rc, done);
 done:
     free(index);
