@@ -9,6 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Steps between corrections of d and v to the constraints (see
+ * gsn_explicit_step); the first step is always one. */
+enum { CONSTRAINT_REFRESH = 64 };
 /* Points per batch of the material update. */
 enum { CHUNK = 64 };
 /* Doubles of per-thread work per batch: G, strain increment, old stress,
@@ -58,14 +61,15 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     free(e->point_failed);
     free(e->transpose_offset);
     free(e->transpose_point);
-    free(e->transpose_entry);
+    free(e->transpose_gradient);
     free(e->boundary_point_mask);
     free(e);
     *handle = NULL;
 }
 
-/* For each particle I, the (point, entry) pairs of the gradient rows that
- * hold I, in ascending point order. */
+/* For each particle I, the points whose gradient rows hold I, in ascending
+ * point order, with a copy of the gradient: the second pass then streams
+ * its gradients instead of gathering them. */
 static int build_transpose(struct gsn_explicit *e)
 {
     const struct gsn_shape_rows *g = &e->quadrature->gradient;
@@ -73,7 +77,8 @@ static int build_transpose(struct gsn_explicit *e)
     size_t entries = (size_t)g->offset[g->row_count];
     GSN_CALL(alloc_array((void **)&e->transpose_offset, n + 1, sizeof(int)));
     GSN_CALL(alloc_array((void **)&e->transpose_point, entries, sizeof(int)));
-    GSN_CALL(alloc_array((void **)&e->transpose_entry, entries, sizeof(int)));
+    GSN_CALL(alloc_array((void **)&e->transpose_gradient, 3 * entries,
+                         sizeof(double)));
     for (size_t k = 0; k < entries; ++k)
         e->transpose_offset[g->index[k] + 1]++;
     for (size_t i = 0; i < n; ++i)
@@ -85,7 +90,8 @@ static int build_transpose(struct gsn_explicit *e)
         for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
             int at = fill[g->index[k]]++;
             e->transpose_point[at] = p;
-            e->transpose_entry[at] = k;
+            memcpy(&e->transpose_gradient[3 * at], &g->gradient[3 * k],
+                   3 * sizeof(double));
         }
     }
     free(fill);
@@ -435,14 +441,13 @@ static void pass_stabilization_point(struct gsn_explicit *e, int p)
 /* f_I = sum over the points whose row holds I of P_p g_pI. */
 static void gather_forces(const struct gsn_explicit *e, double *force)
 {
-    const struct gsn_shape_rows *g = &e->quadrature->gradient;
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < e->particle_count; ++i) {
         double f[3] = {0.0, 0.0, 0.0};
         for (int t = e->transpose_offset[i]; t < e->transpose_offset[i + 1];
              ++t) {
             const double *P = &e->piola[9 * e->transpose_point[t]];
-            const double *grad = &g->gradient[3 * e->transpose_entry[t]];
+            const double *grad = &e->transpose_gradient[3 * t];
             for (int a = 0; a < 3; ++a)
                 f[a] += P[3 * a] * grad[0] + P[3 * a + 1] * grad[1] +
                         P[3 * a + 2] * grad[2];
@@ -528,7 +533,12 @@ int gsn_explicit_step(struct gsn_explicit *e)
     for (int i = 0; i < n3; ++i) /* eq. (33) */
         e->displacement[i] +=
             dt * e->velocity[i] + 0.5 * dt * dt * e->acceleration[i];
-    if (e->constraints)
+    /* The constraints are linear, so once v and a satisfy them, eqs. (33)
+     * and (34) keep d and v satisfying them: only a is corrected every step;
+     * d and v at the first step (a prescribed velocity starts with a jump)
+     * and every CONSTRAINT_REFRESH steps against round-off drift. */
+    int refresh = e->step % CONSTRAINT_REFRESH == 0;
+    if (e->constraints && refresh)
         GSN_CALL(gsn_constraints_apply(
             e->constraints, &e->quadrature->particle_values,
             GSN_FIELD_DISPLACEMENT, t1, e->displacement));
@@ -555,7 +565,7 @@ int gsn_explicit_step(struct gsn_explicit *e)
         e->velocity[i] += 0.5 * dt * (e->acceleration[i] + a1[i]);
         e->acceleration[i] = a1[i];
     }
-    if (e->constraints)
+    if (e->constraints && refresh)
         GSN_CALL(gsn_constraints_apply(e->constraints,
                                        &e->quadrature->particle_values,
                                        GSN_FIELD_VELOCITY, t1, e->velocity));

@@ -72,13 +72,13 @@ struct gsn_explicit {
     int *point_failed;    /* points: 1 where pass 1 failed */
     double *thread_work;
     int thread_count;
-    int *transpose_offset;    /* n + 1 */
-    int *transpose_point;     /* entries: the point p of each */
-    int *transpose_entry;     /* entries: the gradient entry of each */
-    int skip_boundary_term;   /* 1: leave out the boundary term (negative
-                                 control of the patch test only) */
-    int *boundary_point_mask; /* constrained components at each boundary
-                                 quadrature point (bit k: component k) */
+    int *transpose_offset;      /* n + 1 */
+    int *transpose_point;       /* entries: the point p of each */
+    double *transpose_gradient; /* entries x 3: the gradient of each */
+    int skip_boundary_term;     /* 1: leave out the boundary term (negative
+                                   control of the patch test only) */
+    int *boundary_point_mask;   /* constrained components at each boundary
+                                   quadrature point (bit k: component k) */
 };
 
 /* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped

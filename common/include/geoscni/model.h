@@ -56,6 +56,11 @@ int gsn_model_write(const char *path, const struct gsn_model *m,
 /* Reads and checks the shape and index ranges of a model file. */
 int gsn_model_read(const char *path, struct gsn_model *m);
 
+/* Renumbers the particles in Morton (Z) order of their positions and the
+ * facets by owner, so that neighbours lie near each other in memory; every
+ * index array (facets, surfaces, tetrahedra) follows. */
+int gsn_model_sort_spatially(struct gsn_model *m);
+
 /* Index of a surface by name, or -1. */
 int gsn_model_find_surface(const struct gsn_model *m, const char *name);
 
