@@ -221,15 +221,36 @@ int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
 
     /* dM/dX_k b, with dh_I/dX_k = -(1/s) dh/dz_k. */
     memset(g, 0, 3 * (size_t)m * sizeof *g);
-    for (int n = 0; n < count; ++n) {
-        basis_eval(m, z + 3 * n, h);
-        for (int k = 0; k < 3; ++k) {
-            basis_derivative(m, z + 3 * n, k, dh);
-            double dhb = -dot(m, dh, b) / s;
-            double *gk = g + k * m;
-            for (int i = 0; i < m; ++i)
-                gk[i] += dphi[3 * n + k] * hb[n] * h[i] +
-                         phi[n] * (-hb[n] * dh[i] / s + dhb * h[i]);
+    if (m == 4) {
+        /* linear basis: dh/dz_k = e_(k+1), so
+         * dM/dX_k b = sum_I (dphi_k hb - phi b_(k+1)/s) h_I
+         *             - e_(k+1) sum_I phi hb / s */
+        double sum = 0.0;
+        for (int n = 0; n < count; ++n) {
+            const double *zn = z + 3 * n;
+            sum += phi[n] * hb[n];
+            for (int k = 0; k < 3; ++k) {
+                double c = dphi[3 * n + k] * hb[n] - phi[n] * b[k + 1] / s;
+                double *gk = g + 4 * k;
+                gk[0] += c;
+                gk[1] += c * zn[0];
+                gk[2] += c * zn[1];
+                gk[3] += c * zn[2];
+            }
+        }
+        for (int k = 0; k < 3; ++k)
+            g[4 * k + k + 1] -= sum / s;
+    } else {
+        for (int n = 0; n < count; ++n) {
+            basis_eval(m, z + 3 * n, h);
+            for (int k = 0; k < 3; ++k) {
+                basis_derivative(m, z + 3 * n, k, dh);
+                double dhb = -dot(m, dh, b) / s;
+                double *gk = g + k * m;
+                for (int i = 0; i < m; ++i)
+                    gk[i] += dphi[3 * n + k] * hb[n] * h[i] +
+                             phi[n] * (-hb[n] * dh[i] / s + dhb * h[i]);
+            }
         }
     }
     /* db/dX_k = -M^{-1} (dM/dX_k) b */
@@ -240,6 +261,17 @@ int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
             gk[i] = -gk[i];
     }
     for (int n = 0; n < count; ++n) {
+        if (m == 4) {
+            const double *zn = z + 3 * n;
+            for (int k = 0; k < 3; ++k) {
+                const double *gk = g + 4 * k;
+                double dbh =
+                    gk[0] + gk[1] * zn[0] + gk[2] * zn[1] + gk[3] * zn[2];
+                gradient[3 * n + k] =
+                    (dbh - b[k + 1] / s) * phi[n] + hb[n] * dphi[3 * n + k];
+            }
+            continue;
+        }
         basis_eval(m, z + 3 * n, h);
         for (int k = 0; k < 3; ++k) {
             basis_derivative(m, z + 3 * n, k, dh);
