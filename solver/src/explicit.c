@@ -12,6 +12,10 @@
 /* Steps between corrections of d and v to the constraints (see
  * gsn_explicit_step); the first step is always one. */
 enum { CONSTRAINT_REFRESH = 64 };
+/* Loops over fewer items than this run on one thread: the start-up of a
+ * parallel region costs more than they do (and spin-waiting threads on a
+ * loaded machine cost far more). */
+enum { PARALLEL_MIN_ITEMS = 2048 };
 /* Points per batch of the material update. */
 enum { CHUNK = 64 };
 /* Doubles of per-thread work per batch: G, strain increment, old stress,
@@ -26,6 +30,11 @@ enum {
     POWER_WINDOW = 10
 };
 #define POWER_TOLERANCE 1e-3
+
+static int parallel_worth(int items)
+{
+    return items >= PARALLEL_MIN_ITEMS;
+}
 
 static int alloc_array(void **array, size_t count, size_t size)
 {
@@ -441,7 +450,7 @@ static void pass_stabilization_point(struct gsn_explicit *e, int p)
 /* f_I = sum over the points whose row holds I of P_p g_pI. */
 static void gather_forces(const struct gsn_explicit *e, double *force)
 {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if (parallel_worth(e->particle_count))
     for (int i = 0; i < e->particle_count; ++i) {
         double f[3] = {0.0, 0.0, 0.0};
         for (int t = e->transpose_offset[i]; t < e->transpose_offset[i + 1];
@@ -484,7 +493,7 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
 {
     const struct gsn_shape_rows *g = &e->quadrature->gradient;
     const double *w = e->quadrature->point_weight;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if (parallel_worth(e->main_point_count))
     for (int p = 0; p < e->main_point_count; ++p) {
         double F[9];
         point_deformation(g, p, e->displacement, F);
@@ -503,7 +512,10 @@ int gsn_explicit_update_stress(struct gsn_explicit *e)
     int failed = 0;
     int batches = (e->main_point_count + CHUNK - 1) / CHUNK;
     memset(e->point_failed, 0, sizeof(int) * (size_t)e->point_count);
-#pragma omp parallel for schedule(dynamic, 4) reduction(| : failed)
+    int parallel = parallel_worth(e->main_point_count);
+    /* clang-format off */
+#pragma omp parallel for schedule(dynamic, 4) reduction(|:failed) if (parallel)
+    /* clang-format on */
     for (int b = 0; b < batches; ++b) {
         int p0 = b * CHUNK;
         int p1 =
@@ -512,7 +524,8 @@ int gsn_explicit_update_stress(struct gsn_explicit *e)
             &e->thread_work[(size_t)omp_get_thread_num() * CHUNK_WORK];
         failed |= pass_main_batch(e, p0, p1, work) != GSN_OK;
     }
-#pragma omp parallel for schedule(static)
+    int stabilization_points = e->point_count - e->main_point_count;
+#pragma omp parallel for if (parallel_worth(stabilization_points))
     for (int p = e->main_point_count; p < e->point_count; ++p)
         pass_stabilization_point(e, p);
     if (failed) {
@@ -609,7 +622,7 @@ static void apply_stiffness(struct gsn_explicit *e, const double *x, double *y)
 {
     const struct gsn_shape_rows *g = &e->quadrature->gradient;
     const double *w = e->quadrature->point_weight;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if (parallel_worth(e->point_count))
     for (int p = 0; p < e->point_count; ++p) {
         double eps[6], sigma[6];
         point_strain(g, p, x, eps);
@@ -679,7 +692,7 @@ void gsn_explicit_particle_field(const struct gsn_explicit *e,
                                  const double *coefficients, double *out)
 {
     const struct gsn_shape_rows *values = &e->quadrature->particle_values;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if (parallel_worth(e->particle_count))
     for (int j = 0; j < e->particle_count; ++j) {
         double u[3] = {0.0, 0.0, 0.0};
         for (int k = values->offset[j]; k < values->offset[j + 1]; ++k)

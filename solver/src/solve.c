@@ -31,6 +31,8 @@
  * the trapezoidal rule of W_ext does not see (a constant offset). */
 #define ENERGY_BALANCE_TOLERANCE 0.05
 #define ENERGY_CHECK_FIRST_STEP 10
+/* Wall-clock seconds between checkpoints. */
+#define CHECKPOINT_INTERVAL 30.0
 
 struct boundary_set {
     int surface; /* index in the model */
@@ -61,6 +63,7 @@ struct run {
     double next_frame_time;
     int damage_offset, plastic_offset;
     double energy_baseline; /* J, see ENERGY_CHECK_FIRST_STEP */
+    double last_checkpoint; /* wall-clock time of the last one, s */
 };
 
 static double now_seconds(void)
@@ -268,13 +271,20 @@ done:
     return rc;
 }
 
-static int write_output(struct run *r)
+/* A frame and its history row; a checkpoint with it at the end of the run
+ * and when CHECKPOINT_INTERVAL seconds of wall time have passed since the
+ * last one (a restart from any checkpoint gives the same bits). */
+static int write_output(struct run *r, int final)
 {
     fill_frame(r);
     GSN_CALL(write_history_row(r));
     GSN_CALL(gsn_results_frame_write(r->results, r->frame_count, &r->frame));
     r->frame_count++;
-    GSN_CALL(write_checkpoint(r));
+    double now = now_seconds();
+    if (final || now - r->last_checkpoint >= CHECKPOINT_INTERVAL) {
+        GSN_CALL(write_checkpoint(r));
+        r->last_checkpoint = now;
+    }
     return GSN_OK;
 }
 
@@ -374,7 +384,7 @@ static int run_loop(struct run *r)
         GSN_CALL(check_energy(r));
         int last = e->step == r->total_steps;
         if (e->time >= r->next_frame_time - 0.5 * e->dt || last) {
-            GSN_CALL(write_output(r));
+            GSN_CALL(write_output(r, last));
             while (r->next_frame_time <= e->time + 0.5 * e->dt)
                 r->next_frame_time += every;
         }
@@ -407,7 +417,7 @@ static int open_outputs(struct run *r)
         r->history = fopen(r->history_path, "w");
         GSN_CHECK(r->history, GSN_ERR_IO, "%s: cannot create", r->history_path);
         GSN_CALL(write_history_header(r));
-        GSN_CALL(write_output(r)); /* the frame at t = 0 */
+        GSN_CALL(write_output(r, 0)); /* the frame at t = 0 */
         r->next_frame_time = r->c->output_every;
         return GSN_OK;
     }
