@@ -207,7 +207,10 @@ static int gmsh_set_size(double min, double max)
     int ierr = 0;
     gmshOptionSetNumber("Mesh.MeshSizeMin", min, &ierr);
     gmshOptionSetNumber("Mesh.MeshSizeMax", max, &ierr);
+    /* linear tetrahedra only, whatever the geometry file asks for */
     gmshOptionSetNumber("Mesh.ElementOrder", 1, &ierr);
+    gmshOptionSetNumber("Mesh.RecombineAll", 0, &ierr);
+    gmshOptionSetNumber("Mesh.Recombine3DAll", 0, &ierr);
     GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot set the mesh size");
     return GSN_OK;
 }
@@ -401,10 +404,10 @@ static int compare_pairs(const void *pa, const void *pb)
 }
 
 /* Adds the triangles of surface entity `entity` to physical surface s. */
-static int mesh_read_surface_entity(struct mesh *m, const int *index,
-                                    size_t limit, struct face_hash *surface_of,
-                                    int entity, int s, int **pairs,
-                                    size_t *pair_count, size_t *capacity)
+static int mesh_read_surface_entity(const int *index, size_t limit,
+                                    struct face_hash *surface_of, int entity,
+                                    int s, int **pairs, size_t *pair_count,
+                                    size_t *capacity)
 {
     size_t *elements = NULL, element_count = 0, *nodes = NULL, node_count = 0;
     int ierr = 0, rc = GSN_OK;
@@ -419,9 +422,6 @@ static int mesh_read_surface_entity(struct mesh *m, const int *index,
             v[k] = nodes[t + k] < limit ? index[nodes[t + k]] : -1;
         if (v[0] < 0 || v[1] < 0 || v[2] < 0)
             continue; /* a surface that bounds no volume */
-        m->surface_area[s] +=
-            triangle_area(&m->position[3 * v[0]], &m->position[3 * v[1]],
-                          &m->position[3 * v[2]]);
         face_sort(v, key);
         size_t slot = face_slot(surface_of, key);
         if (!face_found(surface_of, slot))
@@ -444,8 +444,8 @@ done:
     return rc;
 }
 
-/* The physical surfaces: names, their triangles (hashed into surface_of),
- * their areas as gmsh's mesh gives them, and the particles on them. */
+/* The physical surfaces: names, their triangles (hashed into surface_of)
+ * and the particles on them. */
 static int mesh_read_surfaces(struct mesh *m, const int *index, size_t limit,
                               struct face_hash *surface_of)
 {
@@ -480,9 +480,8 @@ static int mesh_read_surfaces(struct mesh *m, const int *index, size_t limit,
         gmshModelGetEntitiesForPhysicalGroup(2, tag, &entities, &entity_count,
                                              &ierr);
         for (size_t e = 0; ierr == 0 && rc == GSN_OK && e < entity_count; ++e)
-            rc = mesh_read_surface_entity(m, index, limit, surface_of,
-                                          entities[e], s, &pairs, &pair_count,
-                                          &capacity);
+            rc = mesh_read_surface_entity(index, limit, surface_of, entities[e],
+                                          s, &pairs, &pair_count, &capacity);
         gmshFree(entities);
         GSN_CHECK_GOTO(rc == GSN_OK && ierr == 0, rc,
                        rc != GSN_OK ? rc : GSN_ERR_LIBRARY, done,
@@ -553,6 +552,20 @@ static int mesh_label_faces(struct mesh *m, const struct face_hash *surface_of)
                 m->face_label[f] = POLY_LABEL_INTERNAL;
             }
         }
+    /* gmsh's area of each surface: its triangles on the body's boundary (a
+     * named surface between two volumes bounds no nodal domain) */
+    for (int s = 0; s < m->surface_count; ++s)
+        m->surface_area[s] = 0.0;
+    for (size_t f = 0; f < 4 * nt; ++f) {
+        int label = m->face_label[f];
+        if (label >= 0 || label <= POLY_LABEL_HULL)
+            continue;
+        const int *v = &m->tetrahedra[4 * (f / 4)];
+        const int *o = opposite[f % 4];
+        m->surface_area[-1 - label] +=
+            triangle_area(&m->position[3 * v[o[0]]], &m->position[3 * v[o[1]]],
+                          &m->position[3 * v[o[2]]]);
+    }
 done:
     face_hash_free(&faces);
     return rc;
