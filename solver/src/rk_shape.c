@@ -307,15 +307,15 @@ int gsn_rk_neighbours(const struct gsn_rk *rk, const double x[3], int capacity,
                 size_t cell = (size_t)c0 +
                               (size_t)rk->grid_size[0] *
                                   ((size_t)c1 + (size_t)rk->grid_size[1] * c2);
+                const double *data = rk->cell_data;
                 for (int e = rk->cell_offset[cell];
                      e < rk->cell_offset[cell + 1]; ++e) {
-                    int p = rk->cell_particle[e];
-                    const double *xp = rk->position + 3 * (size_t)p;
-                    double a = rk->radius[p];
+                    const double *xp = data + 4 * (size_t)e;
+                    double a = xp[3];
                     if (fabs(x[0] - xp[0]) < a && fabs(x[1] - xp[1]) < a &&
                         fabs(x[2] - xp[2]) < a) {
                         if (count < capacity)
-                            index[count] = p;
+                            index[count] = rk->cell_particle[e];
                         ++count;
                     }
                 }
@@ -342,6 +342,7 @@ void gsn_rk_destroy(struct gsn_rk **rk)
     free((*rk)->radius);
     free((*rk)->cell_offset);
     free((*rk)->cell_particle);
+    free((*rk)->cell_data);
     free(*rk);
     *rk = NULL;
 }
@@ -429,6 +430,15 @@ int gsn_rk_create(int particle_count, const double *position,
     for (size_t c = cells; c > 0; --c)
         rk->cell_offset[c] = rk->cell_offset[c - 1];
     rk->cell_offset[0] = 0;
+    rk->cell_data = malloc(4 * n * sizeof *rk->cell_data);
+    GSN_CHECK_GOTO(rk->cell_data, rc, GSN_ERR_MEMORY, fail,
+                   "cannot allocate the cell list");
+    for (size_t e = 0; e < n; ++e) {
+        size_t p = (size_t)rk->cell_particle[e];
+        for (int k = 0; k < 3; ++k)
+            rk->cell_data[4 * e + k] = position[3 * p + k];
+        rk->cell_data[4 * e + 3] = rk->radius[p];
+    }
     *out = rk;
     return GSN_OK;
 fail:

@@ -69,6 +69,7 @@ struct gsn_rk {
     int grid_size[3];
     int *cell_offset;   /* cells + 1 */
     int *cell_particle; /* particles by cell, ascending within a cell */
+    double *cell_data;  /* x, y, z, a of cell_particle, in the same order */
 };
 
 /* Copies the positions (n x 3, m) and spacings h_I (m) and builds the cell
