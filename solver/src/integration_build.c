@@ -108,33 +108,6 @@ static int flush(struct kernel_thread *t, int touched_count, double scale)
     return failed;
 }
 
-static int evaluate(const struct gsn_rk *rk, const double *x, int want_grad,
-                    struct kernel_thread *t, int *count, const char *what,
-                    int which)
-{
-    *count = gsn_rk_neighbours(rk, x, GSN_RK_MAX_NEIGHBOURS, t->index);
-    if (*count > GSN_RK_MAX_NEIGHBOURS) {
-        snprintf(t->message, sizeof t->message,
-                 "%s %d at (%g, %g, %g) is covered by %d kernels, more than "
-                 "%d: the support is too large",
-                 what, which, x[0], x[1], x[2], *count, GSN_RK_MAX_NEIGHBOURS);
-        return GSN_ERR_INPUT;
-    }
-    double condition;
-    if (gsn_rk_shape_point(rk, x, *count, t->index, t->work, t->psi,
-                           want_grad ? t->gradient : NULL, &condition)) {
-        snprintf(t->message, sizeof t->message,
-                 "%s %d at (%g, %g, %g): moment matrix singular or "
-                 "ill-conditioned (condition number %.3g, limit %.3g) with %d "
-                 "particles covering it (the basis has %d terms): enlarge "
-                 "the kernel support",
-                 what, which, x[0], x[1], x[2], condition,
-                 GSN_RK_CONDITION_LIMIT, *count, rk->basis_size);
-        return GSN_ERR_NUMERICAL;
-    }
-    return GSN_OK;
-}
-
 /* Row L: (1/V_L) sum over the facets of L of sum_q Psi_I(x_q) N w_q, with
  * N outward from L (the neighbour side uses the owner's points with the
  * opposite normal, so interior facets cancel exactly: eq. (24)). */
@@ -151,8 +124,8 @@ static int scni_row(void *context, int L, struct kernel_thread *t)
         for (int q = m->facet_point_offset[f]; q < m->facet_point_offset[f + 1];
              ++q) {
             int count;
-            int rc = evaluate(c->rk, m->facet_point + 3 * (size_t)q, 0, t,
-                              &count, "facet point", q);
+            int rc = kernel_evaluate(c->rk, m->facet_point + 3 * (size_t)q, 0,
+                                     t, &count, "facet point", q);
             if (rc != GSN_OK)
                 return rc;
             double w = sign * m->facet_weight[q];
@@ -225,7 +198,8 @@ static int mscni_row(void *context, int row, struct kernel_thread *t)
         if (group != s || !(volume > 1e-12 * m->volume[L]))
             continue;
         int count;
-        int rc = evaluate(c->rk, centroid, 1, t, &count, "sub-cell point", f);
+        int rc =
+            kernel_evaluate(c->rk, centroid, 1, t, &count, "sub-cell point", f);
         if (rc != GSN_OK)
             return rc;
         total += volume;

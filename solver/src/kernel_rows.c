@@ -6,8 +6,36 @@
 
 #include <limits.h>
 #include <omp.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+int kernel_evaluate(const struct gsn_rk *rk, const double *x, int want_gradient,
+                    struct kernel_thread *t, int *count, const char *what,
+                    int which)
+{
+    *count = gsn_rk_neighbours(rk, x, GSN_RK_MAX_NEIGHBOURS, t->index);
+    if (*count > GSN_RK_MAX_NEIGHBOURS) {
+        snprintf(t->message, sizeof t->message,
+                 "%s %d at (%g, %g, %g) is covered by %d kernels, more than "
+                 "%d: the support is too large",
+                 what, which, x[0], x[1], x[2], *count, GSN_RK_MAX_NEIGHBOURS);
+        return GSN_ERR_INPUT;
+    }
+    double condition;
+    if (gsn_rk_shape_point(rk, x, *count, t->index, t->work, t->psi,
+                           want_gradient ? t->gradient : NULL, &condition)) {
+        snprintf(t->message, sizeof t->message,
+                 "%s %d at (%g, %g, %g): moment matrix singular or "
+                 "ill-conditioned (condition number %.3g, limit %.3g) with %d "
+                 "particles covering it (the basis has %d terms): enlarge "
+                 "the kernel support",
+                 what, which, x[0], x[1], x[2], condition,
+                 GSN_RK_CONDITION_LIMIT, *count, rk->basis_size);
+        return GSN_ERR_NUMERICAL;
+    }
+    return GSN_OK;
+}
 
 int kernel_row_push(struct kernel_thread *t, int index, double value,
                     const double *gradient)
@@ -45,7 +73,6 @@ static void thread_free(struct kernel_thread *t)
     free(t->gradient);
     free(t->work);
     free(t->dense);
-    free(t->dense_value);
     free(t->mark);
     free(t->touched);
     free(t->out_index);
@@ -62,11 +89,10 @@ static int thread_allocate(struct kernel_thread *t, const struct gsn_rk *rk)
     t->gradient = malloc(3 * cap * sizeof *t->gradient);
     t->work = malloc(gsn_rk_work_size(rk, (int)cap) * sizeof *t->work);
     t->dense = calloc(3 * n, sizeof *t->dense);
-    t->dense_value = calloc(n, sizeof *t->dense_value);
     t->mark = calloc(n, sizeof *t->mark);
     t->touched = malloc(n * sizeof *t->touched);
     return t->index && t->psi && t->gradient && t->work && t->dense &&
-           t->dense_value && t->mark && t->touched;
+           t->mark && t->touched;
 }
 
 int kernel_rows_build(const struct gsn_rk *rk, int row_count, kernel_row_fn fn,

@@ -10,14 +10,13 @@
 
 /* Per-thread scratch handed to the row function. */
 struct kernel_thread {
-    int *index;          /* GSN_RK_MAX_NEIGHBOURS */
-    double *psi;         /* GSN_RK_MAX_NEIGHBOURS */
-    double *gradient;    /* 3 GSN_RK_MAX_NEIGHBOURS */
-    double *work;        /* gsn_rk_work_size for GSN_RK_MAX_NEIGHBOURS */
-    double *dense;       /* 3 per particle, zero between rows */
-    double *dense_value; /* 1 per particle, zero between rows */
-    int *mark;           /* 1 per particle, 0 between rows */
-    int *touched;        /* particle_count */
+    int *index;       /* GSN_RK_MAX_NEIGHBOURS */
+    double *psi;      /* GSN_RK_MAX_NEIGHBOURS */
+    double *gradient; /* 3 GSN_RK_MAX_NEIGHBOURS */
+    double *work;     /* gsn_rk_work_size for GSN_RK_MAX_NEIGHBOURS */
+    double *dense;    /* 3 per particle, zero between rows */
+    int *mark;        /* 1 per particle, 0 between rows */
+    int *touched;     /* particle_count */
     /* the row being written */
     long count, capacity;
     int *out_index;
@@ -25,6 +24,16 @@ struct kernel_thread {
     double *out_gradient;
     char message[256];
 };
+
+/* Finds the particles covering x and evaluates Psi (and grad Psi if
+ * want_gradient) there into t->index, t->psi, t->gradient; *count gets
+ * their number. On failure returns GSN_ERR_INPUT (too many neighbours) or
+ * GSN_ERR_NUMERICAL (moment matrix singular or ill-conditioned) with
+ * t->message naming the point ("what which"), its position and its
+ * neighbour count. */
+int kernel_evaluate(const struct gsn_rk *rk, const double *x, int want_gradient,
+                    struct kernel_thread *t, int *count, const char *what,
+                    int which);
 
 /* Appends one entry to the current row; 1 if out of memory. */
 int kernel_row_push(struct kernel_thread *t, int index, double value,
