@@ -1,0 +1,43 @@
+#!/bin/sh
+# geoscni solve through the CLI on a gmsh box: a normal run writes its
+# outputs; a step above the stable one is refused with both values (exit 2);
+# forced, the run stops as unstable with exit 3 naming step, time and
+# particle, and the frames written before stay readable; solve without
+# model.h5 says to run pre first (exit 2).
+set -u
+geoscni=$1
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+"$geoscni" solve cases/cli_box.yaml -o "$out/none" -q 2>"$out/err"
+[ $? -eq 2 ] || fail "solve without model.h5 should exit 2"
+grep -q "run 'geoscni pre" "$out/err" || fail "no hint to run pre: $(cat "$out/err")"
+
+"$geoscni" pre cases/cli_box.yaml -o "$out/ok" -q || fail "pre failed"
+"$geoscni" solve cases/cli_box.yaml -o "$out/ok" -q || fail "solve failed"
+for f in model.h5 results.h5 history.csv; do
+    [ -s "$out/ok/$f" ] || fail "missing $f"
+done
+[ -e "$out/ok/results.h5.part" ] && fail "results.h5.part left behind"
+rows=$(wc -l <"$out/ok/history.csv")
+[ "$rows" -eq 7 ] || fail "history.csv has $rows lines, expected a header and 6 rows"
+head -1 "$out/ok/history.csv" | grep -q "^time,step,bottom_ux,bottom_uy,bottom_uz,bottom_fx,bottom_fy,bottom_fz,top_ux" ||
+    fail "history header: $(head -1 "$out/ok/history.csv")"
+
+"$geoscni" pre cases/cli_box_big_step.yaml -o "$out/big" -q || fail "pre failed"
+"$geoscni" solve cases/cli_box_big_step.yaml -o "$out/big" -q 2>"$out/err"
+[ $? -eq 2 ] || fail "a step above the stable one should exit 2"
+grep -q "time.step = 0.05 s is above the stable step" "$out/err" || fail "message: $(cat "$out/err")"
+
+"$geoscni" solve cases/cli_box_big_step.yaml -o "$out/big" -q --force 2>"$out/err"
+status=$?
+[ $status -eq 3 ] || fail "a forced unstable run should exit 3, got $status"
+grep -q "step [0-9]*, t = .* s: .*particle" "$out/err" || fail "message: $(cat "$out/err")"
+[ -s "$out/big/results.h5" ] || fail "the frames before the failure were not kept"
+if [ -x /usr/bin/h5ls ]; then
+    /usr/bin/h5ls "$out/big/results.h5/frames" | grep -q "000000" || fail "frame 0 unreadable"
+fi
+echo "$failures failures"
+[ "$failures" -eq 0 ]
