@@ -28,7 +28,7 @@ enum { BLOCK_CELLS = 64, MESSAGE_SIZE = 512 };
 #define DOMAIN_EPS 1e-14       /* a vertex this close to a plane is on it */
 #define DOMAIN_EPS_RETRY 1e-11 /* second try after a topology failure */
 #define DOMAIN_DUPLICATE 1e-12 /* particles this close are duplicates */
-#define DOMAIN_HULL_PAD 1e-6   /* the hull box is this much larger */
+#define DOMAIN_CONVEX 1e-12    /* boundary patches flatter than this are flat */
 
 static double now(void)
 {
@@ -113,8 +113,10 @@ static int bins_create(struct bins *b, const double lo[3], const double hi[3],
 
 struct body_index {
     int triangle_count;
-    int *triangle;         /* triangle_count x 3 particle indices */
-    struct bins triangles; /* bins of the triangles */
+    int *triangle;          /* triangle_count x 3 particle indices */
+    int *triangle_label;    /* as domain_body's face labels */
+    double *triangle_plane; /* outward unit normal n and n.x on it */
+    struct bins triangles;  /* bins of the triangles */
     struct bins tetrahedra;
     char *on_boundary; /* per particle: a vertex of a boundary triangle */
 };
@@ -122,6 +124,8 @@ struct body_index {
 static void body_index_free(struct body_index *b)
 {
     free(b->triangle);
+    free(b->triangle_label);
+    free(b->triangle_plane);
     free(b->on_boundary);
     bins_free(&b->triangles);
     bins_free(&b->tetrahedra);
@@ -129,6 +133,33 @@ static void body_index_free(struct body_index *b)
 }
 
 static const int tet_face[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+
+/* Unit normal of triangle v pointing away from particle opposite, and the
+ * plane's offset n.x. */
+static void triangle_plane(const double *position, const int v[3], int opposite,
+                           double plane[4])
+{
+    const double *a = &position[3 * v[0]], *b = &position[3 * v[1]];
+    const double *c = &position[3 * v[2]], *o = &position[3 * opposite];
+    double u[3], w[3], n[3];
+    for (int k = 0; k < 3; ++k) {
+        u[k] = b[k] - a[k];
+        w[k] = c[k] - a[k];
+    }
+    n[0] = u[1] * w[2] - u[2] * w[1];
+    n[1] = u[2] * w[0] - u[0] * w[2];
+    n[2] = u[0] * w[1] - u[1] * w[0];
+    double length = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double side =
+        n[0] * (o[0] - a[0]) + n[1] * (o[1] - a[1]) + n[2] * (o[2] - a[2]);
+    double scale = (side > 0.0 ? -1.0 : 1.0) / (length > 0.0 ? length : 1.0);
+    for (int k = 0; k < 3; ++k)
+        plane[k] = scale * n[k];
+    plane[3] =
+        (plane[0] * (a[0] + b[0] + c[0]) + plane[1] * (a[1] + b[1] + c[1]) +
+         plane[2] * (a[2] + b[2] + c[2])) /
+        3.0;
+}
 
 static int body_index_create(const struct domain_input *in, double spacing,
                              struct body_index *b)
@@ -143,9 +174,12 @@ static int body_index_create(const struct domain_input *in, double spacing,
     double *lo = malloc(sizeof(double) * 3 * (size_t)(nt > count ? nt : count));
     double *hi = malloc(sizeof(double) * 3 * (size_t)(nt > count ? nt : count));
     b->triangle = malloc(sizeof(int) * 3 * (size_t)(count + 1));
+    b->triangle_label = malloc(sizeof(int) * (size_t)(count + 1));
+    b->triangle_plane = malloc(sizeof(double) * 4 * (size_t)(count + 1));
     b->on_boundary = calloc((size_t)in->particle_count + 1, 1);
-    GSN_CHECK_GOTO(lo && hi && b->triangle && b->on_boundary, rc,
-                   GSN_ERR_MEMORY, fail, "cannot allocate the body index");
+    GSN_CHECK_GOTO(lo && hi && b->triangle && b->triangle_label &&
+                       b->triangle_plane && b->on_boundary,
+                   rc, GSN_ERR_MEMORY, fail, "cannot allocate the body index");
     count = 0;
     for (int t = 0; t < nt; ++t)
         for (int k = 0; k < 4; ++k) {
@@ -156,6 +190,10 @@ static int body_index_create(const struct domain_input *in, double spacing,
                 b->triangle[3 * count + j] = v;
                 b->on_boundary[v] = 1;
             }
+            b->triangle_label[count] = body->face_label[4 * t + k];
+            triangle_plane(in->position, &b->triangle[3 * count],
+                           body->tetrahedra[4 * t + k],
+                           &b->triangle_plane[4 * count]);
             ++count;
         }
     b->triangle_count = count;
@@ -197,7 +235,7 @@ struct block_output {
     double *face_area, *face_normal;
     int point_count, point_capacity;
     double *point, *weight;
-    int crossing;
+    int crossing, pieced;
     int rc;
     char message[MESSAGE_SIZE];
 };
@@ -261,6 +299,7 @@ struct worker {
     int order_capacity;
     int *stamp; /* per tetrahedron / triangle: last cell that looked */
     int *stamp_triangle;
+    int *hit; /* boundary triangles that meet the cell */
 };
 
 struct context {
@@ -268,6 +307,7 @@ struct context {
     const int *offset, *neighbour;
     const struct body_index *body;
     double eps, area_eps, drop_area;
+    double convex_tolerance; /* a vertex this far out breaks convexity */
 };
 
 static int clip_checked(struct poly *p, struct poly_scratch *s,
@@ -320,16 +360,16 @@ static int emit_faces(struct block_output *b, const struct poly *p,
     return 1;
 }
 
-static int cell_crosses_boundary(const struct context *ctx, struct worker *w,
-                                 int i, const double lo[3], const double hi[3])
+/* The boundary triangles that meet the cell (absolute bounding box lo, hi)
+ * in a set of positive area, into w->hit; returns their count. */
+static int cell_boundary_hits(const struct context *ctx, struct worker *w,
+                              int i, const double lo[3], const double hi[3])
 {
     const struct body_index *body = ctx->body;
-    if (body->on_boundary[i])
-        return 1;
     const double *x = &ctx->in->position[3 * i];
     const double *position = ctx->in->position;
     const struct bins *bins = &body->triangles;
-    int first[3], last[3];
+    int first[3], last[3], hits = 0;
     bins_range(bins, lo, hi, first, last);
     for (int z = first[2]; z <= last[2]; ++z)
         for (int y = first[1]; y <= last[1]; ++y)
@@ -356,10 +396,68 @@ static int cell_crosses_boundary(const struct context *ctx, struct worker *w,
                     if (!outside &&
                         poly_meets_triangle(&w->cell, &tri[0][0], ctx->eps,
                                             ctx->area_eps))
-                        return 1;
+                        w->hit[hits++] = t;
                 }
             }
-    return 0;
+    return hits;
+}
+
+/* Whether the boundary triangles that meet a cell form a convex patch: each
+ * one's plane has every other on its inner side, and coplanar ones carry the
+ * same label. Then the body inside the cell is the cell cut by their planes
+ * (a point of the cell beyond one plane that were in the body would need
+ * another boundary triangle in the cell beyond that plane). */
+static int patch_is_convex(const struct context *ctx, const struct worker *w,
+                           int hits)
+{
+    const struct body_index *body = ctx->body;
+    const double *position = ctx->in->position;
+    double tolerance = ctx->convex_tolerance;
+    for (int a = 0; a < hits; ++a) {
+        const double *plane = &body->triangle_plane[4 * w->hit[a]];
+        for (int b = 0; b < hits; ++b) {
+            if (b == a)
+                continue;
+            int t = w->hit[b], on = 0;
+            for (int c = 0; c < 3; ++c) {
+                const double *v = &position[3 * body->triangle[3 * t + c]];
+                double d = plane[0] * v[0] + plane[1] * v[1] + plane[2] * v[2] -
+                           plane[3];
+                if (d > tolerance)
+                    return 0;
+                on += d >= -tolerance;
+            }
+            if (on == 3 &&
+                body->triangle_label[t] != body->triangle_label[w->hit[a]])
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* Cuts the cell (into w->piece) by the planes of the triangles that meet
+ * it; returns 0 if that does not close the cell inside the body. */
+static int cell_cut_by_patch(const struct context *ctx, struct worker *w, int i,
+                             int hits)
+{
+    const struct body_index *body = ctx->body;
+    const double *x = &ctx->in->position[3 * i];
+    poly_copy(&w->piece, &w->cell);
+    for (int h = 0; h < hits; ++h) {
+        int t = w->hit[h];
+        const double *plane = &body->triangle_plane[4 * t];
+        double b =
+            plane[3] - (plane[0] * x[0] + plane[1] * x[1] + plane[2] * x[2]);
+        int r = clip_checked(&w->piece, &w->scratch, plane, b,
+                             body->triangle_label[t], ctx->eps,
+                             DOMAIN_EPS_RETRY / DOMAIN_EPS * ctx->eps);
+        if (r != POLY_CLIP_UNCHANGED && r != POLY_CLIP_CUT)
+            return 0;
+    }
+    for (int f = 0; f < w->piece.face_count; ++f)
+        if (w->piece.face_label[f] == POLY_LABEL_HULL)
+            return 0;
+    return 1;
 }
 
 /* Intersects the cell with the tetrahedra near it and emits the pieces. */
@@ -535,11 +633,20 @@ static int cell_build(const struct context *ctx, struct worker *w, int i,
                 clo[c] = z < clo[c] ? z : clo[c];
                 chi[c] = z > chi[c] ? z : chi[c];
             }
-        pieces = cell_crosses_boundary(ctx, w, i, clo, chi);
+        int hits = cell_boundary_hits(ctx, w, i, clo, chi);
+        pieces = hits > 0;
         if (pieces) {
             ++b->crossing;
-            r = cell_emit_pieces(ctx, w, i, clo, chi, b, &v, moment,
-                                 &cell_faces);
+            if (patch_is_convex(ctx, w, hits) &&
+                cell_cut_by_patch(ctx, w, i, hits)) {
+                poly_volume(&w->piece, &v, moment);
+                r = emit_faces(b, &w->piece, x, in->facet_points,
+                               ctx->drop_area, &cell_faces);
+            } else {
+                ++b->pieced;
+                r = cell_emit_pieces(ctx, w, i, clo, chi, b, &v, moment,
+                                     &cell_faces);
+            }
         }
     }
     if (!pieces) {
@@ -778,6 +885,7 @@ static void worker_free(struct worker *w)
     free(w->distance2);
     free(w->stamp);
     free(w->stamp_triangle);
+    free(w->hit);
     free(w);
 }
 
@@ -788,7 +896,8 @@ static struct worker *worker_create(int tetrahedra, int triangles)
         return NULL;
     w->stamp = malloc(sizeof(int) * (size_t)(tetrahedra + 1));
     w->stamp_triangle = malloc(sizeof(int) * (size_t)(triangles + 1));
-    if (!w->stamp || !w->stamp_triangle) {
+    w->hit = malloc(sizeof(int) * (size_t)(triangles + 1));
+    if (!w->stamp || !w->stamp_triangle || !w->hit) {
         worker_free(w);
         return NULL;
     }
@@ -853,6 +962,7 @@ static int gather_blocks(const struct context *ctx, struct block_output *blocks,
         faces += blocks[k].face_count;
         points += blocks[k].point_count;
         out->crossing_count += blocks[k].crossing;
+        out->pieced_count += blocks[k].pieced;
     }
     GSN_CHECK(faces < (1L << 31) - 2 && points < (1L << 31) - 2, GSN_ERR_INPUT,
               "too many facets (%ld) for 32-bit indices", faces);
@@ -966,7 +1076,8 @@ int domains_build(const struct domain_input *in, struct domain_result *out)
                           &body,
                           DOMAIN_EPS * diagonal,
                           DOMAIN_EPS * DOMAIN_EPS * diagonal * diagonal,
-                          DOMAIN_EPS * DOMAIN_EPS * diagonal * diagonal};
+                          DOMAIN_EPS * DOMAIN_EPS * diagonal * diagonal,
+                          DOMAIN_CONVEX * diagonal};
     t0 = now();
     GSN_CALL_GOTO(build_cells(&ctx, out, blocks, block_count), rc, done);
     GSN_CALL_GOTO(gather_blocks(&ctx, blocks, block_count, out), rc, done);

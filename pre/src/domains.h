@@ -38,7 +38,8 @@ struct domain_result {
     int *facet_point_offset;
     double *facet_point, *facet_weight;
     double twin_error;    /* largest twin area mismatch / V^(2/3) */
-    int crossing_count;   /* cells clipped by the body's pieces */
+    int crossing_count;   /* cells that meet the body's boundary */
+    int pieced_count;     /* of those, cut by tetrahedra (not convex there) */
     double time_delaunay; /* s */
     double time_cells;    /* s */
 };

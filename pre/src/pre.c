@@ -765,9 +765,11 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
     double t_write = omp_get_wtime() - t1;
     if (!options->quiet) {
         printf("pre: %d particles (estimate %.0f), %d tetrahedra, %d facets "
-               "(%d quadrature points), %d cells cut by the boundary\n",
+               "(%d quadrature points), %d cells cut by the boundary (%d by "
+               "tetrahedra)\n",
                n, estimate, m.tetrahedron_count, m.facet_count,
-               m.facet_point_offset[m.facet_count], r.crossing_count);
+               m.facet_point_offset[m.facet_count], r.crossing_count,
+               r.pieced_count);
         printf("pre: volume %.10g m^3 (error %.1e), closure %.1e, moment "
                "%.1e, twins %.1e, surface areas %.1e (tolerance 1e-10)\n",
                mesh.volume, check.volume_error, check.closure_error,
