@@ -637,7 +637,7 @@ static int cell_build(const struct context *ctx, struct worker *w, int i,
         pieces = hits > 0;
         if (pieces) {
             ++b->crossing;
-            if (patch_is_convex(ctx, w, hits) &&
+            if (!in->tetrahedra_only && patch_is_convex(ctx, w, hits) &&
                 cell_cut_by_patch(ctx, w, i, hits)) {
                 poly_volume(&w->piece, &v, moment);
                 r = emit_faces(b, &w->piece, x, in->facet_points,

@@ -24,6 +24,7 @@ struct domain_input {
     int box_label[6];        /* labels of the box faces */
     struct domain_body body; /* tetrahedron_count 0: the box is the body */
     int facet_points;        /* 1 or 3 */
+    int tetrahedra_only;     /* never cut a cell by its boundary planes */
     int threads;             /* 0: OpenMP's default */
 };
 

@@ -686,6 +686,7 @@ static int pre_domains(const struct gsn_case *c,
     in.body.face_label = mesh->face_label;
     in.facet_points = c->facet_points;
     in.threads = options->threads;
+    in.tetrahedra_only = options->tetrahedra_only;
     GSN_CALL(domains_build(&in, r));
     return GSN_OK;
 }
@@ -693,7 +694,7 @@ static int pre_domains(const struct gsn_case *c,
 int gsn_pre_run(const struct gsn_case *c, const char *outdir,
                 const struct gsn_pre_options *options)
 {
-    static const struct gsn_pre_options defaults = {0, 0, 0, 0};
+    static const struct gsn_pre_options defaults = {0, 0, 0, 0, 0};
     if (!options)
         options = &defaults;
     char path[GSN_PATH_SIZE];

@@ -29,11 +29,13 @@
 
 static char folder[64];
 
-static int run_pre(const char *case_path, int threads, struct gsn_model *m,
-                   struct gsn_case *c)
+static int run_pre_with(const char *case_path, int threads, int tetrahedra_only,
+                        struct gsn_model *m, struct gsn_case *c)
 {
-    struct gsn_pre_options options = {
-        .threads = threads, .quiet = 1, .reproducible = 1};
+    struct gsn_pre_options options = {.threads = threads,
+                                      .quiet = 1,
+                                      .reproducible = 1,
+                                      .tetrahedra_only = tetrahedra_only};
     int rc = gsn_case_load(case_path, c);
     if (rc == GSN_OK)
         rc = gsn_pre_run(c, folder, &options);
@@ -44,6 +46,12 @@ static int run_pre(const char *case_path, int threads, struct gsn_model *m,
     if (rc != GSN_OK)
         gsn_error_print(stderr);
     return rc;
+}
+
+static int run_pre(const char *case_path, int threads, struct gsn_model *m,
+                   struct gsn_case *c)
+{
+    return run_pre_with(case_path, threads, 0, m, c);
 }
 
 static void expect_model_checks(const struct gsn_model *m, double volume)
@@ -292,6 +300,62 @@ static void test_slope(const char *case_path, double w, const double flo[3],
     gsn_model_free(&m);
 }
 
+/* Fast path against brute force: cells cut by the planes of a convex
+ * boundary patch equal the same cells intersected tetrahedron by
+ * tetrahedron, in volume, centroid and boundary area per surface. */
+static void test_against_tetrahedra(const char *case_path)
+{
+    struct gsn_model fast, brute;
+    struct gsn_case c;
+    if (run_pre_with(case_path, 0, 0, &fast, &c) != GSN_OK ||
+        run_pre_with(case_path, 0, 1, &brute, &c) != GSN_OK) {
+        TEST_TRUE(0);
+        return;
+    }
+    TEST_INT(fast.particle_count, brute.particle_count);
+    if (fast.particle_count == brute.particle_count) {
+        int n = fast.particle_count, ns = fast.surface_count;
+        double volume = 0.0, centroid = 0.0, area = 0.0;
+        double *a = calloc(2 * (size_t)n * (size_t)ns + 1, sizeof(double));
+        for (int p = 0; p < n; ++p) {
+            double h = cbrt(brute.volume[p]);
+            volume = fmax(volume, fabs(fast.volume[p] - brute.volume[p]) /
+                                      brute.volume[p]);
+            for (int k = 0; k < 3; ++k)
+                centroid = fmax(centroid, fabs(fast.centroid[3 * p + k] -
+                                               brute.centroid[3 * p + k]) /
+                                              h);
+        }
+        const struct gsn_model *models[2] = {&fast, &brute};
+        for (int which = 0; which < 2; ++which)
+            for (int f = 0; f < models[which]->facet_count; ++f) {
+                int s = models[which]->facet_surface[f];
+                if (s >= 0)
+                    a[((size_t)which * (size_t)n +
+                       (size_t)models[which]->facet_owner[f]) *
+                          (size_t)ns +
+                      (size_t)s] += models[which]->facet_area[f];
+            }
+        for (size_t e = 0; e < (size_t)n * (size_t)ns; ++e) {
+            size_t p = e / (size_t)ns;
+            double scale = cbrt(brute.volume[p]) * cbrt(brute.volume[p]);
+            area =
+                fmax(area, fabs(a[e] - a[(size_t)n * (size_t)ns + e]) / scale);
+        }
+        free(a);
+        /* both are the same cell up to the clipping tolerance (1e-14 of
+         * the diagonal) and rounding over different cuts */
+        TEST_TRUE(volume <= 1e-11);
+        TEST_TRUE(centroid <= 1e-11);
+        TEST_TRUE(area <= 1e-11);
+        printf("  against the tetrahedra: volume %.1e centroid %.1e boundary "
+               "area %.1e; facets %d vs %d\n",
+               volume, centroid, area, fast.facet_count, brute.facet_count);
+    }
+    gsn_model_free(&fast);
+    gsn_model_free(&brute);
+}
+
 int main(void)
 {
     test_begin();
@@ -307,6 +371,8 @@ int main(void)
                (const double[3]){6, 0, 10}, (const double[3]){9, 10, 10});
     test_slope("../../geometries/slope_II_coarse.yaml", 12.0,
                (const double[3]){6, 4.5, 10}, (const double[3]){9, 7.5, 10});
+    test_against_tetrahedra("../../geometries/slope_II_coarse.yaml");
+    test_against_tetrahedra("../../geometries/cylinder.yaml");
     char path[128];
     snprintf(path, sizeof path, "%s/model.h5", folder);
     unlink(path);

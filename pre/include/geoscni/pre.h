@@ -21,6 +21,10 @@ struct gsn_pre_options {
      * run in gmsh 4.8; also set by the environment variable
      * GEOSCNI_REPRODUCIBLE=1 */
     int reproducible;
+    /* for tests: every cell that meets the boundary is intersected with the
+     * mesh tetrahedra, also where its boundary planes would do (the brute
+     * force the faster path is checked against) */
+    int tetrahedra_only;
 };
 
 /* Builds OUTDIR/model.h5 from the case: meshes the geometry with gmsh,
