@@ -134,6 +134,57 @@ static void check_threads(void)
     gsn_model_free(&m);
 }
 
+/* Impossible options are input errors with a message, and leave no
+ * struct behind. */
+static void check_bad_options(void)
+{
+    const int size[3] = {4, 4, 4};
+    struct gsn_model m;
+    TEST_INT(fixture_lattice(size, 1.0, 1, &m), GSN_OK);
+    struct gsn_kernel_options bad[4] = {
+        {1.5, 1, GSN_INTEGRATION_GAUSS, 2, GSN_STABILIZATION_MSCNI, 1.0, 6},
+        {1.5, 1, GSN_INTEGRATION_GAUSS, 7, GSN_STABILIZATION_NONE, 1.0, 6},
+        {1.5, 1, GSN_INTEGRATION_SCNI, 2, GSN_STABILIZATION_MSCNI, 1.0, 3},
+        {-1.0, 1, GSN_INTEGRATION_SCNI, 2, GSN_STABILIZATION_NONE, 1.0, 6}};
+    for (int i = 0; i < 4; ++i) {
+        struct gsn_quadrature *q = NULL;
+        gsn_error_clear();
+        TEST_INT(gsn_quadrature_create(&m, &bad[i], NULL, 0, &q),
+                 GSN_ERR_INPUT);
+        TEST_TRUE(q == NULL);
+        printf("bad options %d: %s\n", i, gsn_error_message());
+    }
+    gsn_error_clear();
+    gsn_model_free(&m);
+}
+
+/* DNI and Gauss rows are also the same with one and two threads. */
+static void check_threads_other(void)
+{
+    const int size[3] = {5, 4, 4};
+    struct gsn_model m;
+    TEST_INT(fixture_lattice(size, 1.0, 1, &m), GSN_OK);
+    const enum gsn_integration method[2] = {GSN_INTEGRATION_DNI,
+                                            GSN_INTEGRATION_GAUSS};
+    for (int s = 0; s < 2; ++s) {
+        omp_set_num_threads(1);
+        struct gsn_quadrature *a =
+            build(&m, method[s], GSN_STABILIZATION_NONE, NULL, 0);
+        omp_set_num_threads(2);
+        struct gsn_quadrature *b =
+            build(&m, method[s], GSN_STABILIZATION_NONE, NULL, 0);
+        int nnz = a->gradient.offset[a->point_count];
+        TEST_INT(b->gradient.offset[b->point_count], nnz);
+        TEST_TRUE(!memcmp(a->gradient.gradient, b->gradient.gradient,
+                          3 * (size_t)nnz * sizeof(double)));
+        TEST_TRUE(!memcmp(a->point_weight, b->point_weight,
+                          (size_t)a->point_count * sizeof(double)));
+        gsn_quadrature_destroy(&a);
+        gsn_quadrature_destroy(&b);
+    }
+    gsn_model_free(&m);
+}
+
 int main(void)
 {
     test_begin();
@@ -141,5 +192,7 @@ int main(void)
     check_lattice(5, 5, 5, 2);
     check_lattice(7, 6, 5, 1);
     check_threads();
+    check_threads_other();
+    check_bad_options();
     return test_end("test_scni");
 }
