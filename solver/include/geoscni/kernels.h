@@ -135,7 +135,9 @@ void gsn_kernel_options_from_case(const struct gsn_case *c,
  * particle). Points [main_point_count, point_count) are MSCNI stabilization
  * points: row = B_s - B_L of a sub-cell s of particle L, weight
  * = coefficient x V_s; their stress is the elastic C : (B_s - B_L) d (Puso
- * et al. 2008), which vanishes for every linear field. */
+ * et al. 2008), which vanishes for every linear field. Stabilization point
+ * main_point_count + S L + s belongs to sub-cell s of particle L (S = the
+ * sub-cell count); a sub-cell with no volume has weight 0 and no entries. */
 struct gsn_quadrature {
     enum gsn_integration method;
     enum gsn_stabilization stabilization;
