@@ -28,6 +28,7 @@
 #define ON_FACE 1e-9
 
 static char folder[64];
+static int facet_points_override; /* 0: as the case file says */
 
 static int run_pre_with(const char *case_path, int threads, int tetrahedra_only,
                         struct gsn_model *m, struct gsn_case *c)
@@ -37,6 +38,8 @@ static int run_pre_with(const char *case_path, int threads, int tetrahedra_only,
                                       .reproducible = 1,
                                       .tetrahedra_only = tetrahedra_only};
     int rc = gsn_case_load(case_path, c);
+    if (rc == GSN_OK && facet_points_override)
+        c->facet_points = facet_points_override;
     if (rc == GSN_OK)
         rc = gsn_pre_run(c, folder, &options);
     char path[128];
@@ -199,6 +202,17 @@ static void test_lshape(void)
                                  {"back", 0, 0.0, {0, 0, 0}, {0, 1, 2}, 2.0}};
     for (size_t i = 0; i < sizeof faces / sizeof faces[0]; ++i)
         expect_face(&m, &faces[i]);
+    /* three points per fan triangle: the same checks, more points */
+    struct gsn_model m3;
+    facet_points_override = 3;
+    if (run_pre("../../geometries/lshape.yaml", 0, &m3, &c) == GSN_OK) {
+        expect_model_checks(&m3, 3.0);
+        TEST_TRUE(m3.facet_point_offset[m3.facet_count] >= 3 * m3.facet_count);
+        gsn_model_free(&m3);
+    } else {
+        TEST_TRUE(0);
+    }
+    facet_points_override = 0;
     int step = gsn_model_find_surface(&m, "step");
     TEST_TRUE(step >= 0);
     if (step >= 0)
