@@ -216,6 +216,42 @@ static void test_bad_input(void)
     gsn_error_clear();
 }
 
+/* Point sets of dimension 0, 1 and 2 (CGAL's triangulation has lower
+ * dimension): one point fills the box; points on a line along x cut it into
+ * slabs; a planar grid into columns. */
+static void test_low_dimension(void)
+{
+    const double unit_lo[3] = {0, 0, 0}, unit_hi[3] = {1, 1, 1};
+    struct gsn_model m;
+    double one[3] = {0.3, 0.4, 0.5};
+    TEST_INT(gsn_pre_domains_box(one, 1, unit_lo, unit_hi, 1, &m), GSN_OK);
+    TEST_INT(m.facet_count, 6);
+    TEST_REL(m.volume[0], 1.0, 1e-15);
+    gsn_model_free(&m);
+    double line[15];
+    for (int i = 0; i < 5; ++i) {
+        line[3 * i] = 0.1 + 0.2 * i;
+        line[3 * i + 1] = line[3 * i + 2] = 0.5;
+    }
+    TEST_INT(gsn_pre_domains_box(line, 5, unit_lo, unit_hi, 3, &m), GSN_OK);
+    for (int i = 0; i < 5; ++i)
+        TEST_REL(m.volume[i], 0.2, 1e-14); /* rounding of 0.1 + 0.2 i */
+    gsn_model_free(&m);
+    double plane[75];
+    for (int i = 0; i < 25; ++i) {
+        plane[3 * i] = 0.1 + 0.2 * (i % 5);
+        plane[3 * i + 1] = 0.1 + 0.2 * (i / 5);
+        plane[3 * i + 2] = 0.5;
+    }
+    TEST_INT(gsn_pre_domains_box(plane, 25, unit_lo, unit_hi, 1, &m), GSN_OK);
+    for (int i = 0; i < 25; ++i)
+        TEST_REL(m.volume[i], 0.04, 1e-14);
+    /* columns only: 40 interior faces and 4 x 5 on the sides, 50 on the
+     * top and bottom */
+    TEST_INT(m.facet_count, 40 + 20 + 50);
+    gsn_model_free(&m);
+}
+
 int main(void)
 {
     test_begin();
@@ -225,5 +261,6 @@ int main(void)
     test_jittered(3);
     test_random_and_threads();
     test_bad_input();
+    test_low_dimension();
     return test_end("test_domains_box");
 }
