@@ -5,10 +5,11 @@
  * the neighbours (one thread); each cell starts as a box holding the body
  * and is clipped by the bisector planes of its neighbours, nearest first,
  * until the next neighbour is farther than twice the cell's radius (the
- * security radius). A cell that meets a boundary triangle of the mesh is
- * then intersected with every tetrahedron near it (the tetrahedra are
- * convex pieces whose union is the body), and its facets are kept piece by
- * piece, so non-convex cells near re-entrant edges come out right. Cells
+ * security radius). A cell that meets boundary triangles of the mesh is cut
+ * by their planes where they form a convex patch; elsewhere it is
+ * intersected with every tetrahedron near it (the tetrahedra are convex
+ * pieces whose union is the body) and its facets are kept piece by piece,
+ * so non-convex cells near re-entrant edges come out right. Cells
  * are clipped in parallel in blocks; the results do not depend on the
  * thread count. */
 #include "domains.h"

@@ -1,6 +1,7 @@
 /* pre: the driver (issue 3). Loads the geometry with the gmsh C API, meshes
- * it with tetrahedra at particles.spacing (one gmsh thread: the same input
- * gives the same particles), takes the mesh nodes as particles, builds the
+ * it with tetrahedra at particles.spacing (HXT on one gmsh thread; gmsh's
+ * Delaunay where the same input must give the same particles), takes the
+ * mesh nodes as particles, builds the
  * nodal domains (domains.c), tags boundary particles and facets with the
  * physical surfaces, checks the model and writes model.h5 atomically.
  * gmsh 4.8 pitfalls: TOOLCHAIN.md, "gmsh 4.8 C API". */
