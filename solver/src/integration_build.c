@@ -146,14 +146,16 @@ static int scni_row(void *context, int L, struct kernel_thread *t)
 
 /* ---- MSCNI: sub-cell gradients ------------------------------------------
  * The cell of L is split into pyramids with apex X_L over its facets
- * (volume h A / 3, h the height of X_L over the facet, signed, so they add
- * up to V_L for any apex). Pyramids are grouped by the dominant direction of
- * their outward normal (+x, -x, +y, -y, +z, -z): six sub-cells. The gradient
- * of sub-cell s is the volume average of grad Psi at the pyramid centroids
+ * (volume h A / 3, h the height of X_L over the facet; they add up to V_L
+ * when the cell is star-shaped from X_L; pyramids of no or negative volume
+ * are left out, the stabilization only needs positive weights). Pyramids
+ * are grouped by the dominant direction of their outward normal (+x, -x,
+ * +y, -y, +z, -z: six sub-cells; or its sign only: two). The gradient of
+ * sub-cell s is the volume average of grad Psi at the pyramid centroids
  * (apex + 3/4 (facet centroid - apex)). Linear completeness of grad Psi
  * (eq. (18)) makes B_s - B_L vanish on every linear field, so the
  * stabilization keeps the patch test exact, while a checkerboard, invisible
- * to B_L, has B_s != 0. Row 6 L + s holds B_s - B_L. */
+ * to B_L, has B_s != 0. Row S L + s holds B_s - B_L. */
 
 static void pyramid(const struct gsn_model *m, int f, int L, double sign,
                     int subcells, double *volume, double *centroid, int *group)
