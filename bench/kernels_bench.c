@@ -13,6 +13,7 @@
 #include "geoscni/kernels.h"
 #include "geoscni/pre.h"
 
+#include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -142,6 +143,20 @@ int main(int argc, char **argv)
                (double)nnz * 28.0 / n + 4.0 * (q->point_count + 1) / n,
                36.0 * q->point_count / n, 12.0 * pv / n + 4.0, (double)pv / n,
                (12.0 * bv + 36.0 * q->boundary_point_count) / n);
+        if (s == 0) {
+            /* row-sum lumped mass eq. (28) per unit density */
+            double *mass = calloc((size_t)n, sizeof *mass), low = INFINITY;
+            const struct gsn_shape_rows *r = &q->particle_values;
+            for (int L = 0; L < n; ++L)
+                for (int e = r->offset[L]; e < r->offset[L + 1]; ++e)
+                    mass[r->index[e]] += r->value[e] * m.volume[L];
+            for (int i = 0; i < n; ++i)
+                low = fmin(low, mass[i] / m.volume[i]);
+            printf("               smallest lumped mass m_I / (rho V_I): "
+                   "%.3f\n",
+                   low);
+            free(mass);
+        }
         gsn_quadrature_destroy(&q);
     }
     gsn_model_free(&m);

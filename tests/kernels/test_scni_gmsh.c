@@ -13,6 +13,31 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+/* Row-sum lumped mass of eq. (28) per unit density, m_I = sum_L Psi_I(X_L)
+ * V_L: the total is the volume (partition of unity), and the explicit loop
+ * needs every m_I > 0. Returns the relative error of the total and the
+ * smallest m_I / V_I. */
+static void lumped_mass(const struct gsn_model *m,
+                        const struct gsn_quadrature *q, double *error,
+                        double *smallest)
+{
+    int n = m->particle_count;
+    double *mass = calloc((size_t)n, sizeof *mass), total = 0.0, body = 0.0;
+    const struct gsn_shape_rows *r = &q->particle_values;
+    for (int L = 0; L < n; ++L) {
+        body += m->volume[L];
+        for (int e = r->offset[L]; e < r->offset[L + 1]; ++e)
+            mass[r->index[e]] += r->value[e] * m->volume[L];
+    }
+    *smallest = INFINITY;
+    for (int i = 0; i < n; ++i) {
+        total += mass[i];
+        *smallest = fmin(*smallest, mass[i] / m->volume[i]);
+    }
+    *error = fabs(total / body - 1.0);
+    free(mass);
+}
+
 static void check_case(const char *path)
 {
     static struct gsn_case c;
@@ -51,6 +76,7 @@ static void check_case(const char *path)
                                             GSN_STABILIZATION_MSCNI,
                                             GSN_STABILIZATION_NONE};
     double residual[3] = {1.0, 1.0, 0.0}, e23 = 1.0, e24 = 1.0;
+    double mass_error = 1.0, mass_min = 0.0;
     int interior = 0;
     for (int s = 0; s < 3; ++s) {
         struct gsn_kernel_options o;
@@ -65,10 +91,18 @@ static void check_case(const char *path)
         if (rc)
             continue;
         residual[s] = fixture_patch_test(&m, q);
-        if (s == 0)
+        if (s == 0) {
             fixture_completeness(&m, q, h, &e23, &e24, &interior);
+            lumped_mass(&m, q, &mass_error, &mass_min);
+        }
         gsn_quadrature_destroy(&q);
     }
+    printf("%s: lumped mass: total volume within %.1e, smallest m_I / "
+           "(rho V_I) %.3f\n",
+           path, mass_error, mass_min);
+    /* partition of unity summed over n particles: round-off */
+    TEST_TRUE(mass_error <= 1e-12);
+    TEST_TRUE(mass_min > 0.0);
     printf("%s: %d particles, %d facets: eq. (23) %.2e (the cells' own "
            "moment error %.2e), eq. (24) %.2e at %d interior particles; "
            "patch residual SCNI %.2e, MSCNI %.2e, DNI %.2e\n",
