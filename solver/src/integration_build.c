@@ -151,8 +151,9 @@ static int scni_row(void *context, int L, struct kernel_thread *t)
  * are left out, the stabilization only needs positive weights). Pyramids
  * are grouped by the dominant direction of their outward normal (+x, -x,
  * +y, -y, +z, -z: six sub-cells; or its sign only: two). The gradient of
- * sub-cell s is the volume average of grad Psi at the pyramid centroids
- * (apex + 3/4 (facet centroid - apex)). Linear completeness of grad Psi
+ * sub-cell s is grad Psi at the volume centroid of its pyramids (each
+ * pyramid's centroid is apex + 3/4 (facet centroid - apex)); one
+ * evaluation per sub-cell. Linear completeness of grad Psi
  * (eq. (18)) makes B_s - B_L vanish on every linear field, so the
  * stabilization keeps the patch test exact, while a checkerboard, invisible
  * to B_L, has B_s != 0. Row S L + s holds B_s - B_L. */
@@ -189,7 +190,7 @@ static int mscni_row(void *context, int row, struct kernel_thread *t)
     const struct facet_context *c = context;
     const struct gsn_model *m = c->m;
     int L = row / c->subcells, s = row % c->subcells, touched = 0;
-    double total = 0.0;
+    double total = 0.0, point[3] = {0.0, 0.0, 0.0};
     for (int e = c->particle_facet_offset[L];
          e < c->particle_facet_offset[L + 1]; ++e) {
         int f = c->particle_facet[e], group;
@@ -199,30 +200,31 @@ static int mscni_row(void *context, int row, struct kernel_thread *t)
         /* pyramids of facets through X_L have no volume */
         if (group != s || !(volume > 1e-12 * m->volume[L]))
             continue;
-        int count;
-        int rc =
-            kernel_evaluate(c->rk, centroid, 1, t, &count, "sub-cell point", f);
-        if (rc != GSN_OK)
-            return rc;
         total += volume;
-        for (int n = 0; n < count; ++n) {
-            double v[3] = {t->gradient[3 * n] * volume,
-                           t->gradient[3 * n + 1] * volume,
-                           t->gradient[3 * n + 2] * volume};
-            accumulate(t, &touched, t->index[n], v);
-        }
+        for (int k = 0; k < 3; ++k)
+            point[k] += volume * centroid[k];
     }
     if (total > 0.0) {
-        /* subtract B_L, scaled by the sub-cell volume like the rest */
+        /* B_s: grad Psi at the centroid of the sub-cell's pyramids */
+        for (int k = 0; k < 3; ++k)
+            point[k] /= total;
+        int count;
+        int rc =
+            kernel_evaluate(c->rk, point, 1, t, &count, "sub-cell point", row);
+        if (rc != GSN_OK)
+            return rc;
+        for (int n = 0; n < count; ++n)
+            accumulate(t, &touched, t->index[n], t->gradient + 3 * n);
+        /* minus B_L */
         const struct gsn_shape_rows *b = c->nodal;
         for (int e = b->offset[L]; e < b->offset[L + 1]; ++e) {
-            double v[3] = {-b->gradient[3 * (size_t)e] * total,
-                           -b->gradient[3 * (size_t)e + 1] * total,
-                           -b->gradient[3 * (size_t)e + 2] * total};
+            double v[3] = {-b->gradient[3 * (size_t)e],
+                           -b->gradient[3 * (size_t)e + 1],
+                           -b->gradient[3 * (size_t)e + 2]};
             accumulate(t, &touched, b->index[e], v);
         }
     }
-    if (flush(t, touched, total > 0.0 ? 1.0 / total : 0.0)) {
+    if (flush(t, touched, 1.0)) {
         snprintf(t->message, sizeof t->message, "out of memory at row %d", row);
         return GSN_ERR_MEMORY;
     }

@@ -38,8 +38,7 @@ extern "C" {
 
 /* Sub-cells per nodal domain of modified SCNI: 6 groups the pyramids over
  * the facets by the dominant signed axis of their normal, 2 by the sign
- * only (half the storage, but checkerboards stay about as soft as smooth
- * modes: docs/kernels.md). */
+ * only (less than half the storage, slightly weaker: docs/kernels.md). */
 #define GSN_DEFAULT_STABILIZATION_SUBCELLS 6
 
 /* Compressed rows: entries offset[r] .. offset[r+1]-1 of row r, sorted by
