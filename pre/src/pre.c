@@ -756,6 +756,8 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
     memcpy(m.tetrahedra, mesh.tetrahedra,
            sizeof(int) * 4 * (size_t)mesh.tetrahedron_count);
 
+    /* Morton order: the solver's passes then find neighbours in cache. */
+    GSN_CALL_GOTO(gsn_model_sort_spatially(&m), rc, done);
     double t1 = omp_get_wtime();
     struct gsn_pre_check check;
     memset(&check, 0, sizeof check);

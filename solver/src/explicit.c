@@ -2,6 +2,7 @@
 #include "explicit.h"
 #include "geoscni/error.h"
 #include "geoscni/tensor.h"
+#include "point_blocks.h"
 #include "stress_update.h"
 
 #include <math.h>
@@ -16,10 +17,12 @@ enum { CONSTRAINT_REFRESH = 64 };
  * parallel region costs more than they do (and spin-waiting threads on a
  * loaded machine cost far more). */
 enum { PARALLEL_MIN_ITEMS = 2048 };
+/* Points per block of the one-pass step (point_blocks.h). */
+enum { BLOCK_SIZE = 128 };
 /* Points per batch of the material update. */
 enum { CHUNK = 64 };
 /* Doubles of per-thread work per batch: G, strain increment, old stress,
- * new F, mid-step determinant. */
+ * new H, mid-step determinant. */
 enum { CHUNK_WORK = CHUNK * (9 + 6 + 6 + 9 + 1) };
 /* Power iterations of the stable-step estimate: at least the first, at most
  * the second; it stops when the Rayleigh quotient moved less than
@@ -68,43 +71,13 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         free(arrays[i]);
     free(e->point_failed);
-    free(e->transpose_offset);
-    free(e->transpose_point);
-    free(e->transpose_gradient);
+    free(e->displacement_gradient);
+    free(e->increment);
+    free(e->slot_force);
+    gsn_point_blocks_destroy(&e->blocks);
     free(e->boundary_point_mask);
     free(e);
     *handle = NULL;
-}
-
-/* For each particle I, the points whose gradient rows hold I, in ascending
- * point order, with a copy of the gradient: the second pass then streams
- * its gradients instead of gathering them. */
-static int build_transpose(struct gsn_explicit *e)
-{
-    const struct gsn_shape_rows *g = &e->quadrature->gradient;
-    size_t n = (size_t)e->particle_count;
-    size_t entries = (size_t)g->offset[g->row_count];
-    GSN_CALL(alloc_array((void **)&e->transpose_offset, n + 1, sizeof(int)));
-    GSN_CALL(alloc_array((void **)&e->transpose_point, entries, sizeof(int)));
-    GSN_CALL(alloc_array((void **)&e->transpose_gradient, 3 * entries,
-                         sizeof(double)));
-    for (size_t k = 0; k < entries; ++k)
-        e->transpose_offset[g->index[k] + 1]++;
-    for (size_t i = 0; i < n; ++i)
-        e->transpose_offset[i + 1] += e->transpose_offset[i];
-    int *fill = NULL;
-    GSN_CALL(alloc_array((void **)&fill, n, sizeof(int)));
-    memcpy(fill, e->transpose_offset, n * sizeof(int));
-    for (int p = 0; p < g->row_count; ++p) {
-        for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
-            int at = fill[g->index[k]]++;
-            e->transpose_point[at] = p;
-            memcpy(&e->transpose_gradient[3 * at], &g->gradient[3 * k],
-                   3 * sizeof(double));
-        }
-    }
-    free(fill);
-    return GSN_OK;
 }
 
 /* The constrained components at every boundary quadrature point. */
@@ -250,16 +223,30 @@ int gsn_explicit_create(const struct gsn_model *m,
         {(void **)&e->previous_external, n3, sizeof(double)},
         {(void **)&e->new_acceleration, n3, sizeof(double)},
         {(void **)&e->piola, 9 * points, sizeof(double)},
+        {(void **)&e->displacement_gradient, 9 * points, sizeof(double)},
+        {(void **)&e->increment, n3, sizeof(double)},
         {(void **)&e->point_energy, points, sizeof(double)},
         {(void **)&e->point_failed, points, sizeof(int)},
-        {(void **)&e->thread_work, (size_t)e->thread_count * CHUNK_WORK,
-         sizeof(double)},
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         GSN_CALL_GOTO(
             alloc_array(arrays[i].array, arrays[i].count, arrays[i].size), rc,
             fail);
-    GSN_CALL_GOTO(build_transpose(e), rc, fail);
+    GSN_CALL_GOTO(gsn_point_blocks_create(&quadrature->gradient,
+                                          e->particle_count, BLOCK_SIZE,
+                                          e->main_point_count, &e->blocks),
+                  rc, fail);
+    GSN_CALL_GOTO(
+        alloc_array((void **)&e->slot_force,
+                    3 * (size_t)e->blocks->block_slot[e->blocks->block_count],
+                    sizeof(double)),
+        rc, fail);
+    GSN_CALL_GOTO(
+        alloc_array((void **)&e->thread_work,
+                    (size_t)e->thread_count *
+                        (6 * (size_t)e->blocks->max_block_slots + CHUNK_WORK),
+                    sizeof(double)),
+        rc, fail);
     GSN_CALL_GOTO(build_boundary_masks(e), rc, fail);
     GSN_CALL_GOTO(build_mass(e, c), rc, fail);
     GSN_CALL_GOTO(gsn_material_initialize(material, main, e->stress, e->state),
@@ -292,45 +279,6 @@ void gsn_explicit_add_traction(struct gsn_explicit *e,
             e->f_ext[i] + e->reaction[i] + e->boundary_force[i];
 }
 
-/* F_p = I + sum_I d_I (x) g_pI (eq. (21)). */
-static void point_deformation(const struct gsn_shape_rows *g, int p,
-                              const double *d, double F[9])
-{
-    for (int a = 0; a < 9; ++a)
-        F[a] = (a % 4 == 0) ? 1.0 : 0.0;
-    for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
-        const double *u = &d[3 * g->index[k]];
-        const double *grad = &g->gradient[3 * k];
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                F[3 * i + j] += u[i] * grad[j];
-    }
-}
-
-/* F_p at t_{n+1} and the increment dH = sum_I (d_I - d_I^n) (x) g_pI,
- * summed from the coefficient increments rather than as F_{n+1} - F_n,
- * which would lose the increment's digits to the cancellation. */
-static void point_deformation_increment(const struct gsn_shape_rows *g, int p,
-                                        const double *d, const double *d0,
-                                        double F[9], double dH[9])
-{
-    for (int a = 0; a < 9; ++a) {
-        F[a] = (a % 4 == 0) ? 1.0 : 0.0;
-        dH[a] = 0.0;
-    }
-    for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
-        const double *u = &d[3 * g->index[k]], *u0 = &d0[3 * g->index[k]];
-        const double *grad = &g->gradient[3 * k];
-        for (int i = 0; i < 3; ++i) {
-            double du = u[i] - u0[i];
-            for (int j = 0; j < 3; ++j) {
-                F[3 * i + j] += u[i] * grad[j];
-                dH[3 * i + j] += du * grad[j];
-            }
-        }
-    }
-}
-
 /* Small-strain elastic stress of the strain eps (Voigt, tensor shear). */
 static void elastic_stress(double bulk, double shear, const double eps[6],
                            double sigma[6])
@@ -338,18 +286,6 @@ static void elastic_stress(double bulk, double shear, const double eps[6],
     double volumetric = (bulk - 2.0 * shear / 3.0) * gsn_voigt_trace(eps);
     for (int a = 0; a < 6; ++a)
         sigma[a] = 2.0 * shear * eps[a] + (a < 3 ? volumetric : 0.0);
-}
-
-/* Symmetric part of sum_I u_I (x) g_pI, Voigt (tensor shear). */
-static void point_strain(const struct gsn_shape_rows *g, int p, const double *u,
-                         double eps[6])
-{
-    double H[9];
-    point_deformation(g, p, u, H);
-    H[0] -= 1.0;
-    H[4] -= 1.0;
-    H[8] -= 1.0;
-    gsn_matrix_sym_to_voigt(H, eps);
 }
 
 /* P = J sigma F^-T w, from F (9) and sigma (Voigt). */
@@ -373,28 +309,65 @@ static double voigt_contract(const double a[6], const double b[6])
            2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
 }
 
-/* Pass 1 on one batch of main points [p0, p1). */
-static int pass_main_batch(struct gsn_explicit *e, int p0, int p1, double *work)
+/* dH_p = sum_I du_I (x) g_pI over row p, du gathered into the block's
+ * slots (eq. (21) applied to the increment). */
+static void point_increment(const struct gsn_explicit *e, int p,
+                            const double *du, double dH[9])
 {
     const struct gsn_shape_rows *g = &e->quadrature->gradient;
+    const int *slot = e->blocks->entry_slot;
+    for (int a = 0; a < 9; ++a)
+        dH[a] = 0.0;
+    for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
+        const double *u = &du[3 * slot[k]];
+        const double *grad = &g->gradient[3 * k];
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                dH[3 * i + j] += u[i] * grad[j];
+    }
+}
+
+/* force_slot += P_p g_pI over row p (eq. (29) with P = J sigma F^-T w). */
+static void point_scatter(const struct gsn_explicit *e, int p, double *force)
+{
+    const struct gsn_shape_rows *g = &e->quadrature->gradient;
+    const int *slot = e->blocks->entry_slot;
+    const double *P = &e->piola[9 * p];
+    for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
+        const double *grad = &g->gradient[3 * k];
+        double *f = &force[3 * slot[k]];
+        for (int i = 0; i < 3; ++i)
+            f[i] += P[3 * i] * grad[0] + P[3 * i + 1] * grad[1] +
+                    P[3 * i + 2] * grad[2];
+    }
+}
+
+/* Main points [p0, p1): F_{n+1} = I + H + dH, the incremental gradient on
+ * the mid-step configuration G = dH (I + H + dH/2)^-1, the objective
+ * update with the material (Fig. 3), the work sigma : d eps and P. */
+static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
+                      double *work)
+{
     const double *w = e->quadrature->point_weight;
     double *G = work, *deps = G + 9 * CHUNK, *old = deps + 6 * CHUNK;
-    double *Fnew = old + 6 * CHUNK, *Jmid = Fnew + 9 * CHUNK;
+    double *Hnew = old + 6 * CHUNK, *Jmid = Hnew + 9 * CHUNK;
     int failed = 0;
     for (int p = p0; p < p1; ++p) {
         int b = p - p0;
-        double *F1 = &Fnew[9 * b], Fmid[9], Fmid_inv[9], dH[9];
-        point_deformation_increment(g, p, e->displacement,
-                                    e->previous_displacement, F1, dH);
-        for (int a = 0; a < 9; ++a)
-            Fmid[a] = F1[a] - 0.5 * dH[a];
+        const double *H = &e->displacement_gradient[9 * p];
+        double dH[9], F1[9], Fmid[9], Fmid_inv[9];
+        point_increment(e, p, du, dH);
+        for (int a = 0; a < 9; ++a) {
+            double identity = (a % 4 == 0) ? 1.0 : 0.0;
+            Hnew[9 * b + a] = H[a] + dH[a];
+            F1[a] = identity + Hnew[9 * b + a];
+            Fmid[a] = identity + H[a] + 0.5 * dH[a];
+        }
         Jmid[b] = gsn_matrix_inverse(Fmid, Fmid_inv);
         double J1 = gsn_matrix_determinant(F1);
         if (!(J1 > 0.0) || !(Jmid[b] > 0.0) || !isfinite(J1)) {
             e->point_failed[p] = 1;
             failed = 1;
-            Jmid[b] = 1.0;
-            memset(&G[9 * b], 0, 9 * sizeof(double));
             continue;
         }
         gsn_matrix_multiply(dH, Fmid_inv, &G[9 * b]);
@@ -412,34 +385,37 @@ static int pass_main_batch(struct gsn_explicit *e, int p0, int p1, double *work)
     }
     for (int p = p0; p < p1; ++p) {
         int b = p - p0;
-        double mean[6];
+        double mean[6], F1[9];
         for (int a = 0; a < 6; ++a)
             mean[a] = 0.5 * (old[6 * b + a] + e->stress[6 * p + a]);
         /* Internal work sigma : d eps over the mid-step volume. */
         e->point_energy[p] =
             voigt_contract(mean, &deps[6 * b]) * Jmid[b] * w[p];
-        point_piola(&Fnew[9 * b], &e->stress[6 * p], w[p], &e->piola[9 * p]);
+        memcpy(&e->displacement_gradient[9 * p], &Hnew[9 * b],
+               9 * sizeof(double));
+        for (int a = 0; a < 9; ++a)
+            F1[a] = ((a % 4 == 0) ? 1.0 : 0.0) + Hnew[9 * b + a];
+        point_piola(F1, &e->stress[6 * p], w[p], &e->piola[9 * p]);
     }
     return GSN_OK;
 }
 
-/* Pass 1 on a stabilization point: linear elastic stress of its row (Puso
- * et al. 2008), which vanishes for every linear displacement field. */
-static void pass_stabilization_point(struct gsn_explicit *e, int p)
+/* A stabilization point: linear elastic stress of its row (Puso et al.
+ * 2008), which vanishes for every linear displacement field. */
+static void stabilization_point(struct gsn_explicit *e, int p, const double *du)
 {
-    const struct gsn_shape_rows *g = &e->quadrature->gradient;
     double w = e->quadrature->point_weight[p];
-    double eps[6], sigma[6], deps[6], old[6];
-    point_strain(g, p, e->displacement, eps);
-    point_strain(g, p, e->previous_displacement, deps);
-    for (int a = 0; a < 6; ++a)
-        deps[a] = eps[a] - deps[a];
-    memcpy(old, &e->stress[6 * p], sizeof old);
+    double *H = &e->displacement_gradient[9 * p];
+    double dH[9], eps[6], deps[6], sigma[6], mean[6];
+    point_increment(e, p, du, dH);
+    for (int a = 0; a < 9; ++a)
+        H[a] += dH[a];
+    gsn_matrix_sym_to_voigt(H, eps);
+    gsn_matrix_sym_to_voigt(dH, deps);
     elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
-    memcpy(&e->stress[6 * p], sigma, sizeof sigma);
-    double mean[6];
     for (int a = 0; a < 6; ++a)
-        mean[a] = 0.5 * (old[a] + sigma[a]);
+        mean[a] = 0.5 * (e->stress[6 * p + a] + sigma[a]);
+    memcpy(&e->stress[6 * p], sigma, sizeof sigma);
     e->point_energy[p] = voigt_contract(mean, deps) * w;
     double *P = &e->piola[9 * p];
     gsn_voigt_to_matrix(sigma, P);
@@ -447,22 +423,78 @@ static void pass_stabilization_point(struct gsn_explicit *e, int p)
         P[a] *= w;
 }
 
-/* f_I = sum over the points whose row holds I of P_p g_pI. */
-static void gather_forces(const struct gsn_explicit *e, double *force)
+/* Per-thread work: the block's increments and forces, and a chunk's. */
+static double *block_work(const struct gsn_explicit *e)
 {
-#pragma omp parallel for if (parallel_worth(e->particle_count))
-    for (int i = 0; i < e->particle_count; ++i) {
-        double f[3] = {0.0, 0.0, 0.0};
-        for (int t = e->transpose_offset[i]; t < e->transpose_offset[i + 1];
-             ++t) {
-            const double *P = &e->piola[9 * e->transpose_point[t]];
-            const double *grad = &e->transpose_gradient[3 * t];
-            for (int a = 0; a < 3; ++a)
-                f[a] += P[3 * a] * grad[0] + P[3 * a + 1] * grad[1] +
-                        P[3 * a + 2] * grad[2];
+    size_t size = 6 * (size_t)e->blocks->max_block_slots + CHUNK_WORK;
+    return &e->thread_work[(size_t)omp_get_thread_num() * size];
+}
+
+/* Gathers u (n x 3) into the slots of block k. */
+static void block_gather(const struct gsn_explicit *e, int k, const double *u,
+                         double *local)
+{
+    const struct gsn_point_blocks *b = e->blocks;
+    for (int s = b->block_slot[k]; s < b->block_slot[k + 1]; ++s)
+        memcpy(&local[3 * (s - b->block_slot[k])], &u[3 * b->slot_particle[s]],
+               3 * sizeof(double));
+}
+
+/* The step's pass over block k: kinematics, stress and forces of its points
+ * from the increments e->increment, reading each gradient row once. */
+static int block_step(struct gsn_explicit *e, int k)
+{
+    const struct gsn_point_blocks *b = e->blocks;
+    const struct gsn_shape_rows *g = &e->quadrature->gradient;
+    int slots = b->block_slot[k + 1] - b->block_slot[k];
+    double *du = block_work(e), *force = du + 3 * (size_t)slots;
+    double *work = du + 6 * (size_t)b->max_block_slots;
+    block_gather(e, k, e->increment, du);
+    memset(force, 0, sizeof(double) * 3 * (size_t)slots);
+    int rc = GSN_OK;
+    for (int p0 = b->block_point[k]; p0 < b->block_point[k + 1]; p0 += CHUNK) {
+        int p1 = p0 + CHUNK < b->block_point[k + 1] ? p0 + CHUNK
+                                                    : b->block_point[k + 1];
+        if (p0 < e->main_point_count) {
+            if (main_chunk(e, p0, p1, du, work) != GSN_OK) {
+                rc = GSN_ERR_NUMERICAL;
+                continue;
+            }
+        } else {
+            for (int p = p0; p < p1; ++p)
+                stabilization_point(e, p, du);
         }
-        memcpy(&force[3 * i], f, sizeof f);
+        for (int p = p0; p < p1; ++p)
+            point_scatter(e, p, force);
     }
+    (void)g;
+    memcpy(&e->slot_force[3 * (size_t)b->block_slot[k]], force,
+           sizeof(double) * 3 * (size_t)slots);
+    return rc;
+}
+
+/* The linear elastic pass over block k for y = K x (power iteration). */
+static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
+{
+    const struct gsn_point_blocks *b = e->blocks;
+    const double *w = e->quadrature->point_weight;
+    int slots = b->block_slot[k + 1] - b->block_slot[k];
+    double *u = block_work(e), *force = u + 3 * (size_t)slots;
+    block_gather(e, k, x, u);
+    memset(force, 0, sizeof(double) * 3 * (size_t)slots);
+    for (int p = b->block_point[k]; p < b->block_point[k + 1]; ++p) {
+        double H[9], eps[6], sigma[6];
+        point_increment(e, p, u, H);
+        gsn_matrix_sym_to_voigt(H, eps);
+        elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
+        double *P = &e->piola[9 * p];
+        gsn_voigt_to_matrix(sigma, P);
+        for (int a = 0; a < 9; ++a)
+            P[a] *= w[p];
+        point_scatter(e, p, force);
+    }
+    memcpy(&e->slot_force[3 * (size_t)b->block_slot[k]], force,
+           sizeof(double) * 3 * (size_t)slots);
 }
 
 /* The lowest failed point, as a message naming step, time and particle. */
@@ -475,7 +507,9 @@ static int report_failure(const struct gsn_explicit *e, const char *what)
         int particle = q->point_particle ? q->point_particle[p] : -1;
         const double *x = &q->point_position[3 * p];
         double F[9];
-        point_deformation(&q->gradient, p, e->previous_displacement, F);
+        for (int a = 0; a < 9; ++a)
+            F[a] = ((a % 4 == 0) ? 1.0 : 0.0) +
+                   e->displacement_gradient[9 * p + a];
         double J = gsn_matrix_determinant(F);
         return gsn_error_raise(
             GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
@@ -491,13 +525,21 @@ static int report_failure(const struct gsn_explicit *e, const char *what)
 
 int gsn_explicit_refresh(struct gsn_explicit *e)
 {
-    const struct gsn_shape_rows *g = &e->quadrature->gradient;
     const double *w = e->quadrature->point_weight;
-#pragma omp parallel for if (parallel_worth(e->main_point_count))
-    for (int p = 0; p < e->main_point_count; ++p) {
-        double F[9];
-        point_deformation(g, p, e->displacement, F);
-        point_piola(F, &e->stress[6 * p], w[p], &e->piola[9 * p]);
+#pragma omp parallel for if (parallel_worth(e->point_count))
+    for (int p = 0; p < e->point_count; ++p) {
+        double *P = &e->piola[9 * p];
+        if (p < e->main_point_count) {
+            double F[9];
+            for (int a = 0; a < 9; ++a)
+                F[a] = ((a % 4 == 0) ? 1.0 : 0.0) +
+                       e->displacement_gradient[9 * p + a];
+            point_piola(F, &e->stress[6 * p], w[p], P);
+        } else {
+            gsn_voigt_to_matrix(&e->stress[6 * p], P);
+            for (int a = 0; a < 9; ++a)
+                P[a] *= w[p];
+        }
     }
     if (!e->skip_boundary_term)
         boundary_term(e, e->boundary_force);
@@ -509,31 +551,24 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
 
 int gsn_explicit_update_stress(struct gsn_explicit *e)
 {
+    int n3 = 3 * e->particle_count;
+    for (int i = 0; i < n3; ++i)
+        e->increment[i] = e->displacement[i] - e->previous_displacement[i];
     int failed = 0;
-    int batches = (e->main_point_count + CHUNK - 1) / CHUNK;
     memset(e->point_failed, 0, sizeof(int) * (size_t)e->point_count);
-    int parallel = parallel_worth(e->main_point_count);
+    int parallel = parallel_worth(e->point_count);
     /* clang-format off */
-#pragma omp parallel for schedule(dynamic, 4) reduction(|:failed) if (parallel)
+#pragma omp parallel for schedule(dynamic, 2) reduction(|:failed) if (parallel)
     /* clang-format on */
-    for (int b = 0; b < batches; ++b) {
-        int p0 = b * CHUNK;
-        int p1 =
-            p0 + CHUNK < e->main_point_count ? p0 + CHUNK : e->main_point_count;
-        double *work =
-            &e->thread_work[(size_t)omp_get_thread_num() * CHUNK_WORK];
-        failed |= pass_main_batch(e, p0, p1, work) != GSN_OK;
-    }
-    int stabilization_points = e->point_count - e->main_point_count;
-#pragma omp parallel for if (parallel_worth(stabilization_points))
-    for (int p = e->main_point_count; p < e->point_count; ++p)
-        pass_stabilization_point(e, p);
+    for (int k = 0; k < e->blocks->block_count; ++k)
+        failed |= block_step(e, k) != GSN_OK;
     if (failed) {
         GSN_CALL(report_failure(e, "det F <= 0 or the material update failed"));
         GSN_CHECK(0, GSN_ERR_NUMERICAL, "step %ld: the stress update failed",
                   e->step + 1);
     }
-
+    gsn_point_blocks_reduce(e->blocks, e->particle_count, e->slot_force,
+                            e->f_int, parallel_worth(e->particle_count));
     return GSN_OK;
 }
 
@@ -559,7 +594,6 @@ int gsn_explicit_step(struct gsn_explicit *e)
     GSN_CALL(gsn_explicit_update_stress(e));
 
     /* Pass 2: internal force and acceleration at every particle. */
-    gather_forces(e, e->f_int);
     if (!e->skip_boundary_term) {
         boundary_term(e, e->boundary_force);
         for (int i = 0; i < n3; ++i)
@@ -620,19 +654,12 @@ int gsn_explicit_step(struct gsn_explicit *e)
 /* y = K x of the linear elastic system at the reference configuration. */
 static void apply_stiffness(struct gsn_explicit *e, const double *x, double *y)
 {
-    const struct gsn_shape_rows *g = &e->quadrature->gradient;
-    const double *w = e->quadrature->point_weight;
-#pragma omp parallel for if (parallel_worth(e->point_count))
-    for (int p = 0; p < e->point_count; ++p) {
-        double eps[6], sigma[6];
-        point_strain(g, p, x, eps);
-        elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
-        double *P = &e->piola[9 * p];
-        gsn_voigt_to_matrix(sigma, P);
-        for (int a = 0; a < 9; ++a)
-            P[a] *= w[p];
-    }
-    gather_forces(e, y);
+#pragma omp parallel for schedule(dynamic,                                     \
+                                  2) if (parallel_worth(e->point_count))
+    for (int k = 0; k < e->blocks->block_count; ++k)
+        block_stiffness(e, k, x);
+    gsn_point_blocks_reduce(e->blocks, e->particle_count, e->slot_force, y,
+                            parallel_worth(e->particle_count));
 }
 
 int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt)

@@ -4,15 +4,16 @@
  * Per step, from d_n, v_n, a_n:
  *   d_{n+1} = d_n + dt v_n + dt^2/2 a_n                       eq. (33)
  *   boundary coefficients corrected so u(X_J) holds exactly  (constraint.h)
- *   pass 1, per integration point p (no writes shared between points):
- *     F = I + sum_I d_I (x) grad_X Psi_I(X_p)                 eq. (21)
- *     G = dH F_{n+1/2}^-1 with dH = sum_I (d_I - d_I^n) (x) grad Psi_I and
- *     F_{n+1/2} = F_{n+1} - dH/2: the incremental gradient on the mid-step
+ *   one pass over the gradient rows, block by block (point_blocks.h):
+ *     dH = sum_I (d_I - d_I^n) (x) grad_X Psi_I(X_p), H_{n+1} = H_n + dH,
+ *     F = I + H                                              eq. (21)
+ *     G = dH (I + H_n + dH/2)^-1, the incremental gradient on the mid-step
  *     configuration; stress by Hughes-Winget + material (Fig. 3)
  *     P_p = det F sigma F^-T w_p  (so that B_I^T sigma det F V_p of eq. (29)
- *     is P_p grad_X Psi_I(X_p), with the chain rule of eq. (25))
- *   pass 2, per particle I, gathering over the points whose row holds I in
- *   ascending point order (results independent of the thread count):
+ *     is P_p grad_X Psi_I(X_p), with the chain rule of eq. (25)),
+ *     scattered as P_p grad_X Psi_I into the block's slots
+ *   the slots of every particle summed in block order (the same bits on
+ *   any number of threads):
  *     f_int_I = sum_p P_p grad_X Psi_I(X_p)                   eq. (29)
  *     a_{n+1} = M^-1 (f_ext - f_int)                          eq. (32)
  *   v_{n+1} = v_n + dt/2 (a_n + a_{n+1})                      eq. (34)
@@ -36,6 +37,7 @@
 #include "geoscni/case.h"
 #include "geoscni/kernels.h"
 #include "material.h"
+#include "point_blocks.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -72,13 +74,14 @@ struct gsn_explicit {
     int *point_failed;    /* points: 1 where pass 1 failed */
     double *thread_work;
     int thread_count;
-    int *transpose_offset;      /* n + 1 */
-    int *transpose_point;       /* entries: the point p of each */
-    double *transpose_gradient; /* entries x 3: the gradient of each */
-    int skip_boundary_term;     /* 1: leave out the boundary term (negative
-                                   control of the patch test only) */
-    int *boundary_point_mask;   /* constrained components at each boundary
-                                   quadrature point (bit k: component k) */
+    struct gsn_point_blocks *blocks; /* the rows cut for one pass a step */
+    double *slot_force;              /* slots x 3: forces of each block */
+    double *displacement_gradient;   /* points x 9: H = F - I at t_n */
+    double *increment;               /* n x 3: d_{n+1} - d_n */
+    int skip_boundary_term;          /* 1: leave out the boundary term (negative
+                                        control of the patch test only) */
+    int *boundary_point_mask;        /* constrained components at each boundary
+                                        quadrature point (bit k: component k) */
 };
 
 /* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped
@@ -105,10 +108,10 @@ void gsn_explicit_add_traction(struct gsn_explicit *e,
  * last step) after the state was loaded from a checkpoint. */
 int gsn_explicit_refresh(struct gsn_explicit *e);
 
-/* Pass 1 alone: F, the objective stress update and P at every point for
- * the increment from previous_displacement to displacement (both set by the
- * caller). gsn_explicit_step calls it; tests drive it with prescribed
- * motions. */
+/* The pass alone: F, the objective stress update, P at every point and
+ * f_int (without the boundary term) for the increment from
+ * previous_displacement to displacement (both set by the caller).
+ * gsn_explicit_step calls it; tests drive it with prescribed motions. */
 int gsn_explicit_update_stress(struct gsn_explicit *e);
 
 /* One step from t_n to t_{n+1}. GSN_ERR_NUMERICAL names the step, the time

@@ -199,12 +199,20 @@ static int write_checkpoint(struct run *r)
         [GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT] = e->displacement,
         [GSN_CHECKPOINT_COEFFICIENT_VELOCITY] = e->velocity,
         [GSN_CHECKPOINT_COEFFICIENT_ACCELERATION] = e->acceleration,
+        [GSN_CHECKPOINT_DISPLACEMENT_GRADIENT] = e->displacement_gradient,
         [GSN_CHECKPOINT_STRESS] = e->stress,
         [GSN_CHECKPOINT_REACTION] = e->reaction,
         [GSN_CHECKPOINT_ENERGY] = energy,
         [GSN_CHECKPOINT_MATERIAL_STATE] = e->state};
     size_t rows[GSN_CHECKPOINT_DATASET_COUNT] = {
-        n, n, n, (size_t)e->point_count, n, 1, (size_t)e->main_point_count};
+        [GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT] = n,
+        [GSN_CHECKPOINT_COEFFICIENT_VELOCITY] = n,
+        [GSN_CHECKPOINT_COEFFICIENT_ACCELERATION] = n,
+        [GSN_CHECKPOINT_DISPLACEMENT_GRADIENT] = (size_t)e->point_count,
+        [GSN_CHECKPOINT_STRESS] = (size_t)e->point_count,
+        [GSN_CHECKPOINT_REACTION] = n,
+        [GSN_CHECKPOINT_ENERGY] = 1,
+        [GSN_CHECKPOINT_MATERIAL_STATE] = (size_t)e->main_point_count};
     for (int d = 0; d < GSN_CHECKPOINT_DATASET_COUNT; ++d) {
         struct gsn_dataset_info info = gsn_checkpoint_datasets[d];
         if (d == GSN_CHECKPOINT_MATERIAL_STATE) {
@@ -242,12 +250,20 @@ static int read_checkpoint(struct run *r)
         [GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT] = e->displacement,
         [GSN_CHECKPOINT_COEFFICIENT_VELOCITY] = e->velocity,
         [GSN_CHECKPOINT_COEFFICIENT_ACCELERATION] = e->acceleration,
+        [GSN_CHECKPOINT_DISPLACEMENT_GRADIENT] = e->displacement_gradient,
         [GSN_CHECKPOINT_STRESS] = e->stress,
         [GSN_CHECKPOINT_REACTION] = e->reaction,
         [GSN_CHECKPOINT_ENERGY] = energy,
         [GSN_CHECKPOINT_MATERIAL_STATE] = e->state};
     size_t rows[GSN_CHECKPOINT_DATASET_COUNT] = {
-        n, n, n, (size_t)e->point_count, n, 1, (size_t)e->main_point_count};
+        [GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT] = n,
+        [GSN_CHECKPOINT_COEFFICIENT_VELOCITY] = n,
+        [GSN_CHECKPOINT_COEFFICIENT_ACCELERATION] = n,
+        [GSN_CHECKPOINT_DISPLACEMENT_GRADIENT] = (size_t)e->point_count,
+        [GSN_CHECKPOINT_STRESS] = (size_t)e->point_count,
+        [GSN_CHECKPOINT_REACTION] = n,
+        [GSN_CHECKPOINT_ENERGY] = 1,
+        [GSN_CHECKPOINT_MATERIAL_STATE] = (size_t)e->main_point_count};
     for (int d = 0; d < GSN_CHECKPOINT_DATASET_COUNT; ++d) {
         struct gsn_dataset_info info = gsn_checkpoint_datasets[d];
         if (d == GSN_CHECKPOINT_MATERIAL_STATE) {

@@ -112,6 +112,10 @@ struct gsn_dataset_info {
     X(GSN_CHECKPOINT_COEFFICIENT_ACCELERATION,                                 \
       "checkpoint/coefficient_acceleration", GSN_H5_DOUBLE, 3, "m/s^2",        \
       "RK coefficients of the acceleration")                                   \
+    X(GSN_CHECKPOINT_DISPLACEMENT_GRADIENT,                                    \
+      "checkpoint/displacement_gradient", GSN_H5_DOUBLE, 9, "1",               \
+      "H = F - I at the integration points, row-major, accumulated from the "  \
+      "increments")                                                            \
     X(GSN_CHECKPOINT_STRESS, "checkpoint/stress", GSN_H5_DOUBLE, 6, "Pa",      \
       "Cauchy stress at the integration points, Voigt xx yy zz xy yz xz")      \
     X(GSN_CHECKPOINT_REACTION, "checkpoint/reaction", GSN_H5_DOUBLE, 3, "N",   \

@@ -1,0 +1,42 @@
+#!/bin/sh
+# Speed of the explicit loop (issue 5, point 7): particle-steps per second of
+# the full step (kinematics, Hughes-Winget + damage + Drucker-Prager, forces,
+# boundary values) on Slope I at paper resolution, on 1 and on 2 threads,
+# RUNS runs each; prints every run and the medians. The model is made once
+# by pre; each run solves STEPS steps at the paper's time step and writes
+# only its first and last frames.
+# Usage: bench/solver_bench.sh [BUILD_DIR] [RUNS] [STEPS] [CASE]
+#        (default build, 3, 300, geometries/slope_I.yaml)
+set -eu
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-build}
+runs=${2:-3}
+steps=${3:-300}
+case_file=${4:-$root/geometries/slope_I.yaml}
+geoscni=$root/$build/bin/geoscni
+[ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
+work=$(mktemp -d /tmp/geoscni_solver_bench.XXXXXX)
+trap 'rm -rf "$work"' EXIT
+# The case with the run cut to STEPS steps of 1e-3 s.
+sed -e "s|^geometry: *|geometry: $(dirname "$case_file")/|" \
+    -e "s|^\( *end:\).*|\1 $(echo "$steps" | awk '{print $1 * 1e-3}')|" \
+    -e "s|^\( *every:\).*|\1 1000|" "$case_file" >"$work/case.yaml"
+"$geoscni" pre "$work/case.yaml" -o "$work/out" -q
+echo "geoscni solve $(basename "$case_file"), $steps steps, $runs runs per thread count ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
+for threads in 1 2; do
+    i=1
+    : >"$work/rates.$threads"
+    while [ "$i" -le "$runs" ]; do
+        OMP_WAIT_POLICY=passive "$geoscni" solve "$work/case.yaml" -o "$work/out" -j "$threads" \
+            >"$work/log" 2>&1
+        rate=$(tr '\r' '\n' <"$work/log" | grep 'took' | sed 's/.*  \([0-9.e+]*\) particle-steps.*/\1/')
+        particles=$(grep '^solver:' "$work/log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
+        echo "  $threads thread(s), run $i: $rate particle-steps/s ($particles particles)"
+        echo "$rate" >>"$work/rates.$threads"
+        i=$((i + 1))
+    done
+done
+for threads in 1 2; do
+    median=$(sort -g "$work/rates.$threads" | sed -n "$(((runs + 1) / 2))p")
+    echo "median, $threads thread(s): $median particle-steps/s"
+done
