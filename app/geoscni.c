@@ -136,7 +136,24 @@ static int command_run(const struct arguments *a)
         char buffer[GSN_PATH_SIZE];
         const char *outdir = outdir_for(a, a->cases[i], buffer, sizeof buffer);
         GSN_CALL(run_pre(&cases[i], outdir, a));
-        GSN_CALL(run_solve(&cases[i], outdir, a));
+        int rc = run_solve(&cases[i], outdir, a);
+        if (rc == GSN_ERR_NUMERICAL) {
+            /* Show what the run reached before it failed, then fail. */
+            fprintf(stderr, "geoscni run: ");
+            gsn_error_print(stderr);
+            fprintf(stderr, "geoscni run: post-processing the frames "
+                            "written before the failure\n");
+            gsn_error_clear();
+            if (run_post(outdir, a) != GSN_OK) {
+                gsn_error_print(stderr);
+                gsn_error_clear();
+            }
+            GSN_CHECK(0, GSN_ERR_NUMERICAL,
+                      "%s: the solver failed (see above); the frames before "
+                      "the failure are in %s",
+                      cases[i].path, outdir);
+        }
+        GSN_CALL(rc);
         GSN_CALL(run_post(outdir, a));
     }
     return GSN_OK;

@@ -39,5 +39,12 @@ grep -q "step [0-9]*, t = .* s: .*particle" "$out/err" || fail "message: $(cat "
 if [ -x /usr/bin/h5ls ]; then
     /usr/bin/h5ls "$out/big/results.h5/frames" | grep -q "000000" || fail "frame 0 unreadable"
 fi
+# run: a numerical failure still leaves the ParaView files of the frames
+# written before it, and exits 3.
+"$geoscni" run cases/cli_box_big_step.yaml -o "$out/run" -q --force --no-pictures 2>"$out/err"
+status=$?
+[ $status -eq 3 ] || fail "run of a failing case should exit 3, got $status"
+[ -s "$out/run/cli_box_big_step.pvd" ] || fail "run did not post-process the frames before the failure"
+grep -q "the frames before the failure are in" "$out/err" || fail "message: $(cat "$out/err")"
 echo "$failures failures"
 [ "$failures" -eq 0 ]
