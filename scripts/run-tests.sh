@@ -10,11 +10,11 @@ sh scripts/setup-debian.sh
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$jobs"
-ctest --test-dir build --output-on-failure -LE slow -j"$jobs"
+ctest --test-dir build --output-on-failure -LE slow -j"$jobs" --timeout 900
 
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEOSCNI_SANITIZE=ON >/dev/null
 cmake --build build-asan -j"$jobs"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0"
 export LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-ctest --test-dir build-asan --output-on-failure -L unit -j"$jobs"
+ctest --test-dir build-asan --output-on-failure -L unit -j"$jobs" --timeout 900
