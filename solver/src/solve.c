@@ -186,16 +186,14 @@ static int write_history_row(struct run *r)
     return GSN_OK;
 }
 
-static int write_checkpoint(struct run *r)
+/* The arrays of the loop's state, in the order of
+ * gsn_checkpoint_datasets, with their row counts. */
+static void checkpoint_arrays(struct gsn_explicit *e, double energy[3],
+                              void *data[GSN_CHECKPOINT_DATASET_COUNT],
+                              size_t rows[GSN_CHECKPOINT_DATASET_COUNT])
 {
-    const struct gsn_explicit *e = r->explicit_loop;
-    hid_t group = H5I_INVALID_HID;
-    GSN_CALL(gsn_h5_group(r->results, GSN_CHECKPOINT_GROUP, &group));
-    int rc = GSN_OK;
-    size_t n = (size_t)e->particle_count;
-    double energy[3] = {e->kinetic_energy, e->internal_energy,
-                        e->external_work};
-    const void *data[GSN_CHECKPOINT_DATASET_COUNT] = {
+    size_t n = (size_t)e->particle_count, points = (size_t)e->point_count;
+    void *arrays[GSN_CHECKPOINT_DATASET_COUNT] = {
         [GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT] = e->displacement,
         [GSN_CHECKPOINT_COEFFICIENT_VELOCITY] = e->velocity,
         [GSN_CHECKPOINT_COEFFICIENT_ACCELERATION] = e->acceleration,
@@ -204,15 +202,26 @@ static int write_checkpoint(struct run *r)
         [GSN_CHECKPOINT_REACTION] = e->reaction,
         [GSN_CHECKPOINT_ENERGY] = energy,
         [GSN_CHECKPOINT_MATERIAL_STATE] = e->state};
-    size_t rows[GSN_CHECKPOINT_DATASET_COUNT] = {
+    size_t counts[GSN_CHECKPOINT_DATASET_COUNT] = {
         [GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT] = n,
         [GSN_CHECKPOINT_COEFFICIENT_VELOCITY] = n,
         [GSN_CHECKPOINT_COEFFICIENT_ACCELERATION] = n,
-        [GSN_CHECKPOINT_DISPLACEMENT_GRADIENT] = (size_t)e->point_count,
-        [GSN_CHECKPOINT_STRESS] = (size_t)e->point_count,
+        [GSN_CHECKPOINT_DISPLACEMENT_GRADIENT] = points,
+        [GSN_CHECKPOINT_STRESS] = points,
         [GSN_CHECKPOINT_REACTION] = n,
         [GSN_CHECKPOINT_ENERGY] = 1,
         [GSN_CHECKPOINT_MATERIAL_STATE] = (size_t)e->main_point_count};
+    memcpy(data, arrays, sizeof arrays);
+    memcpy(rows, counts, sizeof counts);
+}
+
+/* Writes (write = 1) or reads the checkpoint datasets. */
+static int checkpoint_transfer(struct run *r, int write, double energy[3])
+{
+    struct gsn_explicit *e = r->explicit_loop;
+    void *data[GSN_CHECKPOINT_DATASET_COUNT];
+    size_t rows[GSN_CHECKPOINT_DATASET_COUNT];
+    checkpoint_arrays(e, energy, data, rows);
     for (int d = 0; d < GSN_CHECKPOINT_DATASET_COUNT; ++d) {
         struct gsn_dataset_info info = gsn_checkpoint_datasets[d];
         if (d == GSN_CHECKPOINT_MATERIAL_STATE) {
@@ -220,9 +229,23 @@ static int write_checkpoint(struct run *r)
                 continue;
             info.columns = e->state_size;
         }
-        GSN_CALL_GOTO(gsn_h5_write(r->results, &info, rows[d], data[d]), rc,
-                      done);
+        if (write)
+            GSN_CALL(gsn_h5_write(r->results, &info, rows[d], data[d]));
+        else
+            GSN_CALL(gsn_h5_read(r->results, &info, rows[d], data[d]));
     }
+    return GSN_OK;
+}
+
+static int write_checkpoint(struct run *r)
+{
+    const struct gsn_explicit *e = r->explicit_loop;
+    hid_t group = H5I_INVALID_HID;
+    GSN_CALL(gsn_h5_group(r->results, GSN_CHECKPOINT_GROUP, &group));
+    int rc = GSN_OK;
+    double energy[3] = {e->kinetic_energy, e->internal_energy,
+                        e->external_work};
+    GSN_CALL_GOTO(checkpoint_transfer(r, 1, energy), rc, done);
     GSN_CALL_GOTO(gsn_h5_attr_write_double(group, GSN_FRAME_ATTR_TIME, e->time),
                   rc, done);
     GSN_CALL_GOTO(
@@ -244,36 +267,8 @@ static int read_checkpoint(struct run *r)
     GSN_CHECK(group >= 0, GSN_ERR_IO, "%s: cannot open the checkpoint",
               r->results_temporary);
     int rc = GSN_OK, step = 0;
-    size_t n = (size_t)e->particle_count;
     double energy[3];
-    void *data[GSN_CHECKPOINT_DATASET_COUNT] = {
-        [GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT] = e->displacement,
-        [GSN_CHECKPOINT_COEFFICIENT_VELOCITY] = e->velocity,
-        [GSN_CHECKPOINT_COEFFICIENT_ACCELERATION] = e->acceleration,
-        [GSN_CHECKPOINT_DISPLACEMENT_GRADIENT] = e->displacement_gradient,
-        [GSN_CHECKPOINT_STRESS] = e->stress,
-        [GSN_CHECKPOINT_REACTION] = e->reaction,
-        [GSN_CHECKPOINT_ENERGY] = energy,
-        [GSN_CHECKPOINT_MATERIAL_STATE] = e->state};
-    size_t rows[GSN_CHECKPOINT_DATASET_COUNT] = {
-        [GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT] = n,
-        [GSN_CHECKPOINT_COEFFICIENT_VELOCITY] = n,
-        [GSN_CHECKPOINT_COEFFICIENT_ACCELERATION] = n,
-        [GSN_CHECKPOINT_DISPLACEMENT_GRADIENT] = (size_t)e->point_count,
-        [GSN_CHECKPOINT_STRESS] = (size_t)e->point_count,
-        [GSN_CHECKPOINT_REACTION] = n,
-        [GSN_CHECKPOINT_ENERGY] = 1,
-        [GSN_CHECKPOINT_MATERIAL_STATE] = (size_t)e->main_point_count};
-    for (int d = 0; d < GSN_CHECKPOINT_DATASET_COUNT; ++d) {
-        struct gsn_dataset_info info = gsn_checkpoint_datasets[d];
-        if (d == GSN_CHECKPOINT_MATERIAL_STATE) {
-            if (e->state_size == 0)
-                continue;
-            info.columns = e->state_size;
-        }
-        GSN_CALL_GOTO(gsn_h5_read(r->results, &info, rows[d], data[d]), rc,
-                      done);
-    }
+    GSN_CALL_GOTO(checkpoint_transfer(r, 0, energy), rc, done);
     GSN_CALL_GOTO(gsn_h5_attr_read_int(group, GSN_FRAME_ATTR_STEP, &step), rc,
                   done);
     e->step = step;

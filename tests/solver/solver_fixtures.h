@@ -11,6 +11,7 @@
 #include "geoscni/kernels.h"
 #include "geoscni/model.h"
 #include "geoscni/pre.h"
+#include "geoscni/solver.h"
 #include "material.h"
 
 #include <stdio.h>
@@ -61,6 +62,23 @@ static inline int fixture_box_model(const char *folder, const int count[3],
     snprintf(path, sizeof path, "%s/model.h5", folder);
     rc = gsn_model_write(path, &m, c);
     gsn_model_free(&m);
+    return rc;
+}
+
+/* Makes the folder (a mkdtemp template), writes the box model into it and
+ * runs geoscni solve on it quietly; prints the error chain on failure. */
+static inline int fixture_solve_box(const struct gsn_case *c, char *folder,
+                                    const int count[3], const double lo[3],
+                                    const double hi[3], double jitter)
+{
+    if (!mkdtemp(folder))
+        return GSN_ERR_IO;
+    int rc = fixture_box_model(folder, count, lo, hi, jitter, c);
+    struct gsn_solve_options options = {.quiet = 1};
+    if (rc == GSN_OK)
+        rc = gsn_solve_run(c, folder, &options);
+    if (rc != GSN_OK)
+        gsn_error_print(stderr);
     return rc;
 }
 

@@ -64,15 +64,9 @@ static double column_frequency(const char *case_path, int axis,
     struct gsn_case c;
     TEST_INT(gsn_case_load(case_path, &c), GSN_OK);
     char folder[] = "/tmp/geoscni-test-column-XXXXXX";
-    TEST_TRUE(mkdtemp(folder) != NULL);
     const int count[3] = {3, 3, 41};
     const double lo[3] = {0, 0, 0}, hi[3] = {0.5, 0.5, 10.0};
-    TEST_INT(fixture_box_model(folder, count, lo, hi, 0.0, &c), GSN_OK);
-    struct gsn_solve_options options = {.quiet = 1};
-    int rc = gsn_solve_run(&c, folder, &options);
-    if (rc != GSN_OK)
-        gsn_error_print(stderr);
-    TEST_INT(rc, GSN_OK);
+    TEST_INT(fixture_solve_box(&c, folder, count, lo, hi, 0.0), GSN_OK);
     static struct record r;
     read_history(folder, axis, &r);
     /* Upward zero crossings of the motion about the static deflection. */

@@ -47,15 +47,9 @@ int main(void)
     struct gsn_case c;
     TEST_INT(gsn_case_load("cases/bar_wave.yaml", &c), GSN_OK);
     char folder[] = "/tmp/geoscni-test-wave-XXXXXX";
-    TEST_TRUE(mkdtemp(folder) != NULL);
     int count[3] = {NX, 5, 5};
     double lo[3] = {0, 0, 0}, hi[3] = {LENGTH, 0.5, 0.5};
-    TEST_INT(fixture_box_model(folder, count, lo, hi, 0.0, &c), GSN_OK);
-    struct gsn_solve_options options = {.quiet = 1};
-    int rc = gsn_solve_run(&c, folder, &options);
-    if (rc != GSN_OK)
-        gsn_error_print(stderr);
-    TEST_INT(rc, GSN_OK);
+    TEST_INT(fixture_solve_box(&c, folder, count, lo, hi, 0.0), GSN_OK);
 
     char path[4096];
     struct gsn_model m;
