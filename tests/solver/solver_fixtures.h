@@ -100,20 +100,15 @@ static inline void fixture_solver_destroy(struct fixture_solver *s)
     gsn_model_free(&s->model);
 }
 
-/* Builds the model, the quadrature of the case, its material, the
- * constraints of its boundary entries (none if it has none) and the loop
- * with time step dt. Prints the error chain on failure. */
-static inline int fixture_solver_create(const struct gsn_case *c,
-                                        const int count[3], const double lo[3],
-                                        const double hi[3], double jitter,
-                                        double dt, struct fixture_solver *s)
+/* Builds the quadrature of the case on s->model (already filled), its
+ * material, the constraints of its boundary entries (none if it has none)
+ * and the loop with time step dt. Prints the error chain on failure. */
+static inline int fixture_solver_from_model(const struct gsn_case *c, double dt,
+                                            struct fixture_solver *s)
 {
-    memset(s, 0, sizeof *s);
     struct gsn_kernel_options kernel;
     gsn_kernel_options_from_case(c, &kernel);
-    int rc = fixture_box(count, lo, hi, jitter, c->facet_points, &s->model);
-    if (rc == GSN_OK)
-        rc = gsn_quadrature_create(&s->model, &kernel, NULL, 0, &s->quadrature);
+    int rc = gsn_quadrature_create(&s->model, &kernel, NULL, 0, &s->quadrature);
     if (rc == GSN_OK)
         rc = gsn_material_model_create(gsn_material_name_for_case(&c->material),
                                        &c->material, &s->material);
@@ -128,6 +123,45 @@ static inline int fixture_solver_create(const struct gsn_case *c,
         fixture_solver_destroy(s);
     }
     return rc;
+}
+
+/* The same on a box of particles (fixture_box). */
+static inline int fixture_solver_create(const struct gsn_case *c,
+                                        const int count[3], const double lo[3],
+                                        const double hi[3], double jitter,
+                                        double dt, struct fixture_solver *s)
+{
+    memset(s, 0, sizeof *s);
+    int rc = fixture_box(count, lo, hi, jitter, c->facet_points, &s->model);
+    if (rc != GSN_OK) {
+        gsn_error_print(stderr);
+        return rc;
+    }
+    return fixture_solver_from_model(c, dt, s);
+}
+
+/* The same on the particles gmsh makes for the case's geometry (pre, with
+ * the reproducible mesher), through a model.h5 in a temporary folder. */
+static inline int fixture_solver_from_gmsh(const struct gsn_case *c, double dt,
+                                           struct fixture_solver *s)
+{
+    memset(s, 0, sizeof *s);
+    char folder[] = "/tmp/geoscni-test-gmsh-XXXXXX", path[64], command[96];
+    if (!mkdtemp(folder))
+        return GSN_ERR_IO;
+    struct gsn_pre_options options = {.quiet = 1, .reproducible = 1};
+    int rc = gsn_pre_run(c, folder, &options);
+    snprintf(path, sizeof path, "%s/model.h5", folder);
+    if (rc == GSN_OK)
+        rc = gsn_model_read(path, &s->model);
+    snprintf(command, sizeof command, "rm -rf '%s'", folder);
+    if (system(command) != 0 && rc == GSN_OK)
+        rc = GSN_ERR_IO;
+    if (rc != GSN_OK) {
+        gsn_error_print(stderr);
+        return rc;
+    }
+    return fixture_solver_from_model(c, dt, s);
 }
 
 #endif
