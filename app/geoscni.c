@@ -2,6 +2,7 @@
  * check; exit status 0 ok, 2 bad input, 3 numerical failure (DESIGN.md). */
 #include "geoscni/case.h"
 #include "geoscni/error.h"
+#include "geoscni/h5io.h"
 #include "geoscni/post.h"
 #include "geoscni/pre.h"
 #include "geoscni/solver.h"
@@ -11,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 enum { MAX_CASES = 64 };
 
@@ -18,7 +20,7 @@ struct arguments {
     const char *cases[MAX_CASES];
     int case_count;
     const char *outdir;
-    int force, restart, quiet, no_pictures, threads;
+    int force, restart, quiet, no_pictures, threads, rerun;
 };
 
 struct command {
@@ -126,6 +128,92 @@ static int command_post(const struct arguments *a)
     return GSN_OK;
 }
 
+/* 1 if path exists and was modified no earlier than reference (which must
+ * exist too). */
+static int newer_than(const char *path, const char *reference)
+{
+    struct stat a, b;
+    if (stat(path, &a) != 0 || stat(reference, &b) != 0)
+        return 0;
+    if (a.st_mtim.tv_sec != b.st_mtim.tv_sec)
+        return a.st_mtim.tv_sec > b.st_mtim.tv_sec;
+    return a.st_mtim.tv_nsec >= b.st_mtim.tv_nsec;
+}
+
+/* 1 if a string attribute of an HDF5 file of the given kind equals value
+ * (and, for an int attribute, if int_name is set, it equals 1). Any problem
+ * reading it means "not up to date", never an error. */
+static int file_attribute_matches(const char *path, const char *kind,
+                                  const char *name, const char *value,
+                                  const char *int_name)
+{
+    hid_t file = H5I_INVALID_HID;
+    if (gsn_h5_open(path, kind, 0, &file) != GSN_OK) {
+        gsn_error_clear();
+        return 0;
+    }
+    char *stored = NULL;
+    int flag = 1;
+    int same = gsn_h5_attr_read_string(file, name, &stored) == GSN_OK &&
+               strcmp(stored, value) == 0;
+    if (same && int_name)
+        same =
+            gsn_h5_attr_read_int(file, int_name, &flag) == GSN_OK && flag == 1;
+    free(stored);
+    gsn_h5_close(&file);
+    gsn_error_clear();
+    return same;
+}
+
+/* Whether a stage's output is newer than its inputs and was made from the
+ * same parameters, so that run can skip it. */
+static int stage_up_to_date(const char *stage, const struct gsn_case *c,
+                            const char *outdir)
+{
+    char model[GSN_PATH_SIZE + 16], results[GSN_PATH_SIZE + 16];
+    char pvd[2 * GSN_PATH_SIZE + 8], name[GSN_PATH_SIZE];
+    snprintf(model, sizeof model, "%s/model.h5", outdir);
+    snprintf(results, sizeof results, "%s/results.h5", outdir);
+    if (!strcmp(stage, "pre")) {
+        char signature[GSN_PATH_SIZE + 128];
+        if (gsn_case_pre_signature(c, signature, sizeof signature) != GSN_OK) {
+            gsn_error_clear();
+            return 0;
+        }
+        return newer_than(model, c->geometry) &&
+               file_attribute_matches(model, GSN_FILE_KIND_MODEL,
+                                      GSN_ATTR_PRE_SIGNATURE, signature, NULL);
+    }
+    if (!strcmp(stage, "solve")) {
+        char *yaml = NULL;
+        if (gsn_case_to_yaml_string(c, &yaml) != GSN_OK) {
+            gsn_error_clear();
+            return 0;
+        }
+        int same = newer_than(results, model) &&
+                   file_attribute_matches(results, GSN_FILE_KIND_RESULTS,
+                                          GSN_ATTR_CASE, yaml,
+                                          GSN_RESULTS_ATTR_COMPLETE);
+        free(yaml);
+        return same;
+    }
+    default_outdir(c->path, name, sizeof name);
+    snprintf(pvd, sizeof pvd, "%s/%s.pvd", outdir, name);
+    return newer_than(pvd, results);
+}
+
+static int run_skipped(const struct arguments *a, const char *stage,
+                       const struct gsn_case *c, const char *outdir)
+{
+    if (a->rerun || !stage_up_to_date(stage, c, outdir))
+        return 0;
+    if (!a->quiet)
+        printf("run: %s skipped: its output in %s is newer than its inputs "
+               "and was made from the same parameters (--rerun to redo)\n",
+               stage, outdir);
+    return 1;
+}
+
 static int command_run(const struct arguments *a)
 {
     /* Every case file is checked before any work starts. */
@@ -135,8 +223,11 @@ static int command_run(const struct arguments *a)
     for (int i = 0; i < a->case_count; ++i) {
         char buffer[GSN_PATH_SIZE];
         const char *outdir = outdir_for(a, a->cases[i], buffer, sizeof buffer);
-        GSN_CALL(run_pre(&cases[i], outdir, a));
-        int rc = run_solve(&cases[i], outdir, a);
+        if (!run_skipped(a, "pre", &cases[i], outdir))
+            GSN_CALL(run_pre(&cases[i], outdir, a));
+        int rc = run_skipped(a, "solve", &cases[i], outdir)
+                     ? GSN_OK
+                     : run_solve(&cases[i], outdir, a);
         if (rc == GSN_ERR_NUMERICAL) {
             /* Show what the run reached before it failed, then fail. */
             fprintf(stderr, "geoscni run: ");
@@ -154,7 +245,8 @@ static int command_run(const struct arguments *a)
                       cases[i].path, outdir);
         }
         GSN_CALL(rc);
-        GSN_CALL(run_post(outdir, a));
+        if (!run_skipped(a, "post", &cases[i], outdir))
+            GSN_CALL(run_post(outdir, a));
     }
     return GSN_OK;
 }
@@ -175,11 +267,15 @@ static const struct command commands[] = {
      "write ParaView files (CASE.pvd, vtu/), plots and pictures",
      "  --no-pictures    skip the rendered PNG pictures\n", command_post, 1, 1},
     {"run", "geoscni run CASE.yaml [CASE2.yaml ...] [-o OUTDIR]",
-     "pre, solve and post for each case, each into its own folder",
+     "pre, solve and post for each case, each into its own folder, skipping "
+     "a stage whose output is newer than its inputs and made from the same "
+     "parameters",
      "  -o, --output DIR output folder (with several cases: a folder per "
      "case inside it)\n"
      "  --force          as for pre and solve\n"
-     "  --no-pictures    as for post\n",
+     "  --no-pictures    as for post\n"
+     "  --rerun          run every stage, also those whose output is up to "
+     "date\n",
      command_run, 1, MAX_CASES},
     {"check", "geoscni check CASE.yaml [CASE2.yaml ...]",
      "check case files and print their resolved parameters", "", command_check,
@@ -257,6 +353,8 @@ static int parse_arguments(const struct command *command, int argc, char **argv,
             a->restart = 1;
         } else if (!strcmp(arg, "-q") || !strcmp(arg, "--quiet")) {
             a->quiet = 1;
+        } else if (!strcmp(arg, "--rerun")) {
+            a->rerun = 1;
         } else if (!strcmp(arg, "--no-pictures")) {
             a->no_pictures = 1;
         } else if (arg[0] == '-' && arg[1] != '\0') {

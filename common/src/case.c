@@ -810,6 +810,15 @@ int gsn_case_load(const char *path, struct gsn_case *out)
     return GSN_OK;
 }
 
+int gsn_case_pre_signature(const struct gsn_case *c, char *out, size_t size)
+{
+    int n = snprintf(out, size, "geometry=%s;spacing=%.17g;facet_points=%d",
+                     c->geometry, c->particle_spacing, c->facet_points);
+    GSN_CHECK(n > 0 && (size_t)n < size, GSN_ERR_INTERNAL,
+              "pre signature too long");
+    return GSN_OK;
+}
+
 int gsn_case_find_boundary(const struct gsn_case *c, const char *name)
 {
     for (int i = 0; i < c->boundary_count; ++i)

@@ -161,6 +161,14 @@ int gsn_model_write(const char *path, const struct gsn_model *m,
     GSN_CALL_GOTO(gsn_h5_attr_write_int(file, MODEL_ATTR_PARTICLE_COUNT,
                                         m->particle_count),
                   rc, done);
+    if (c) {
+        char signature[GSN_PATH_SIZE + 128];
+        GSN_CALL_GOTO(gsn_case_pre_signature(c, signature, sizeof signature),
+                      rc, done);
+        GSN_CALL_GOTO(
+            gsn_h5_attr_write_string(file, GSN_ATTR_PRE_SIGNATURE, signature),
+            rc, done);
+    }
     void *data[GSN_MODEL_DATASET_COUNT];
     size_t rows[GSN_MODEL_DATASET_COUNT];
     model_arrays(m, data, rows);

@@ -553,9 +553,14 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
     case_name_of(c->path, r->case_name, sizeof r->case_name);
     GSN_CALL_GOTO(run_setup(r), rc, done);
     GSN_CALL_GOTO(open_outputs(r), rc, done);
+    GSN_CALL_GOTO(
+        gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_COMPLETE, 0), rc,
+        done);
     rc = run_loop(r);
     if (rc != GSN_OK) /* keep what was written: the frames so far */
         gsn_error_pass(rc, __FILE__, __LINE__, __func__, "run_loop(r)");
+    else
+        rc = gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_COMPLETE, 1);
 done:
     if (r->results >= 0) {
         gsn_h5_close(&r->results);

@@ -90,6 +90,11 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out);
 /* The same as a malloc'ed string; the caller frees it. */
 int gsn_case_to_yaml_string(const struct gsn_case *c, char **text);
 
+/* The inputs of pre as one line (geometry, spacing, facet points): pre's
+ * output is up to date when the model it wrote carries the same line and
+ * is newer than the geometry file. */
+int gsn_case_pre_signature(const struct gsn_case *c, char *out, size_t size);
+
 /* Index of a boundary entry by surface name, or -1. */
 int gsn_case_find_boundary(const struct gsn_case *c, const char *name);
 

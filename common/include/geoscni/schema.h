@@ -21,6 +21,8 @@ extern "C" {
 #define GSN_ATTR_LIBRARY_VERSIONS "library_versions"
 #define GSN_ATTR_UNITS "units"
 #define GSN_ATTR_DESCRIPTION "description"
+#define GSN_ATTR_PRE_SIGNATURE                                                 \
+    "pre_inputs" /* model.h5: gsn_case_pre_signature */
 
 enum gsn_h5_type { GSN_H5_DOUBLE, GSN_H5_INT, GSN_H5_STRING };
 
@@ -96,6 +98,7 @@ struct gsn_dataset_info {
 #define GSN_FRAME_ATTR_STEP "step"
 #define GSN_RESULTS_ATTR_FRAME_COUNT "frame_count"
 #define GSN_RESULTS_ATTR_CASE_NAME "case_name"
+#define GSN_RESULTS_ATTR_COMPLETE "complete" /* 1: the run reached its end */
 
 /* The restart checkpoint of results.h5: the group GSN_CHECKPOINT_GROUP with
  * attributes "time" (s) and "step", holding the whole state of the explicit
