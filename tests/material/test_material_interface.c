@@ -125,30 +125,6 @@ static void test_elastic_step(void)
     gsn_material_model_destroy(&dp);
 }
 
-static void matmul(const double A[9], const double B[9], double C[9])
-{
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] +
-                           A[3 * i + 2] * B[6 + j];
-}
-
-static void inverse3(const double A[9], double B[9])
-{
-    const double det = A[0] * (A[4] * A[8] - A[5] * A[7]) -
-                       A[1] * (A[3] * A[8] - A[5] * A[6]) +
-                       A[2] * (A[3] * A[7] - A[4] * A[6]);
-    B[0] = (A[4] * A[8] - A[5] * A[7]) / det;
-    B[1] = (A[2] * A[7] - A[1] * A[8]) / det;
-    B[2] = (A[1] * A[5] - A[2] * A[4]) / det;
-    B[3] = (A[5] * A[6] - A[3] * A[8]) / det;
-    B[4] = (A[0] * A[8] - A[2] * A[6]) / det;
-    B[5] = (A[2] * A[3] - A[0] * A[5]) / det;
-    B[6] = (A[3] * A[7] - A[4] * A[6]) / det;
-    B[7] = (A[1] * A[6] - A[0] * A[7]) / det;
-    B[8] = (A[0] * A[4] - A[1] * A[3]) / det;
-}
-
 /* The closed-form Q against (I - W/2)^-1 (I + W/2) by a 3x3 inverse,
  * orthogonality, and Q sigma Q^T against full matrix products. */
 static void test_rotation(void)
@@ -167,13 +143,13 @@ static void test_rotation(void)
                 Im[3 * i + j] = (i == j) - 0.5 * w;
                 Ip[3 * i + j] = (i == j) + 0.5 * w;
             }
-        inverse3(Im, inv);
-        matmul(inv, Ip, Qref);
+        gsn_matrix_inverse(Im, inv);
+        gsn_matrix_multiply(inv, Ip, Qref);
         double QQt[9], Qt[9];
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j)
                 Qt[3 * i + j] = Q[3 * j + i];
-        matmul(Q, Qt, QQt);
+        gsn_matrix_multiply(Q, Qt, QQt);
         for (int k = 0; k < 9; ++k) {
             TEST_NEAR(Q[k], Qref[k], 1e-14);      /* round-off of O(1) */
             TEST_NEAR(QQt[k], k % 4 == 0, 1e-15); /* orthogonal */
@@ -185,8 +161,8 @@ static void test_rotation(void)
 
         double s[6] = {1.0, -2.0, 0.5, 0.3, -0.7, 0.2}, S[9], T[9], R[9];
         gsn_voigt_to_matrix(s, S);
-        matmul(Q, S, T);
-        matmul(T, Qt, R);
+        gsn_matrix_multiply(Q, S, T);
+        gsn_matrix_multiply(T, Qt, R);
         gsn_stress_update_rotate(Q, s);
         for (int a = 0; a < 6; ++a) /* round-off of O(1) entries */
             TEST_NEAR(s[a], R[3 * gsn_voigt_row[a] + gsn_voigt_col[a]], 1e-14);

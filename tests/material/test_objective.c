@@ -12,30 +12,6 @@
  *   3.1e-3 for N = 10, 100, 1000. */
 #include "material_testing.h"
 
-static void matmul(const double A[9], const double B[9], double C[9])
-{
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] +
-                           A[3 * i + 2] * B[6 + j];
-}
-
-static void inverse3(const double A[9], double B[9])
-{
-    const double det = A[0] * (A[4] * A[8] - A[5] * A[7]) -
-                       A[1] * (A[3] * A[8] - A[5] * A[6]) +
-                       A[2] * (A[3] * A[7] - A[4] * A[6]);
-    B[0] = (A[4] * A[8] - A[5] * A[7]) / det;
-    B[1] = (A[2] * A[7] - A[1] * A[8]) / det;
-    B[2] = (A[1] * A[5] - A[2] * A[4]) / det;
-    B[3] = (A[5] * A[6] - A[3] * A[8]) / det;
-    B[4] = (A[0] * A[8] - A[2] * A[6]) / det;
-    B[5] = (A[2] * A[3] - A[0] * A[5]) / det;
-    B[6] = (A[3] * A[7] - A[4] * A[6]) / det;
-    B[7] = (A[1] * A[6] - A[0] * A[7]) / det;
-    B[8] = (A[0] * A[4] - A[1] * A[3]) / det;
-}
-
 /* Rotation by angle about the unit axis n (Rodrigues). */
 static void rotation_matrix(const double n[3], double angle, double R[9])
 {
@@ -72,8 +48,8 @@ static void rotation_gradient(const double n[3], double angle, int mid,
         memcpy(G, RmI, sizeof RmI);
         return;
     }
-    inverse3(H, Hinv);
-    matmul(RmI, Hinv, G);
+    gsn_matrix_inverse(H, Hinv);
+    gsn_matrix_multiply(RmI, Hinv, G);
 }
 
 static double stress_distance(const double a[6], const double b[6])
