@@ -37,26 +37,13 @@ static const char general_options[] =
     "  -q, --quiet      no progress output\n"
     "  -j, --threads N  OpenMP threads (default: all cores)\n";
 
-/* The default output folder of a case: its file name without .yaml. */
-static void default_outdir(const char *case_path, char *out, size_t size)
-{
-    const char *slash = strrchr(case_path, '/');
-    const char *name = slash ? slash + 1 : case_path;
-    size_t length = strlen(name);
-    if (length > 5 && strcmp(name + length - 5, ".yaml") == 0)
-        length -= 5;
-    else if (length > 4 && strcmp(name + length - 4, ".yml") == 0)
-        length -= 4;
-    snprintf(out, size, "%.*s", (int)length, name);
-}
-
 static const char *outdir_for(const struct arguments *a, const char *case_path,
                               char *buffer, size_t size)
 {
     if (a->outdir && a->case_count <= 1)
         return a->outdir;
     char name[GSN_PATH_SIZE];
-    default_outdir(case_path, name, sizeof name);
+    gsn_case_name(case_path, name, sizeof name);
     int n = a->outdir ? snprintf(buffer, size, "%s/%s", a->outdir, name)
                       : snprintf(buffer, size, "%s", name);
     if (n < 0 || (size_t)n >= size)
@@ -197,7 +184,7 @@ static int stage_up_to_date(const char *stage, const struct gsn_case *c,
         free(yaml);
         return same;
     }
-    default_outdir(c->path, name, sizeof name);
+    gsn_case_name(c->path, name, sizeof name);
     snprintf(pvd, sizeof pvd, "%s/%s.pvd", outdir, name);
     return newer_than(pvd, results);
 }

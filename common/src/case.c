@@ -810,6 +810,18 @@ int gsn_case_load(const char *path, struct gsn_case *out)
     return GSN_OK;
 }
 
+void gsn_case_name(const char *path, char *out, size_t size)
+{
+    const char *slash = strrchr(path, '/');
+    const char *name = slash ? slash + 1 : path;
+    size_t length = strlen(name);
+    if (length > 5 && strcmp(name + length - 5, ".yaml") == 0)
+        length -= 5;
+    else if (length > 4 && strcmp(name + length - 4, ".yml") == 0)
+        length -= 4;
+    snprintf(out, size, "%.*s", (int)length, name);
+}
+
 int gsn_case_pre_signature(const struct gsn_case *c, char *out, size_t size)
 {
     int n = snprintf(out, size, "geometry=%s;spacing=%.17g;facet_points=%d",

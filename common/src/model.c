@@ -277,6 +277,16 @@ int gsn_model_read(const char *path, struct gsn_model *m)
     return GSN_OK;
 }
 
+int gsn_model_particle_on_surface(const struct gsn_model *m, int particle,
+                                  int surface)
+{
+    for (int e = m->particle_surface_offset[particle];
+         e < m->particle_surface_offset[particle + 1]; ++e)
+        if (m->particle_surface[e] == surface)
+            return 1;
+    return 0;
+}
+
 int gsn_model_find_surface(const struct gsn_model *m, const char *name)
 {
     for (int s = 0; s < m->surface_count; ++s)

@@ -75,11 +75,7 @@ static int collect_prescriptions(const struct gsn_model *m,
                   "the geometry changed)",
                   c->path, entry->line, entry->name);
         for (int p = 0; p < n; ++p) {
-            int on_surface = 0;
-            for (int e = m->particle_surface_offset[p];
-                 e < m->particle_surface_offset[p + 1]; ++e)
-                on_surface |= m->particle_surface[e] == surface;
-            if (!on_surface)
+            if (!gsn_model_particle_on_surface(m, p, surface))
                 continue;
             for (int k = 0; k < 3; ++k) {
                 if (!entry->fixed[k] && !entry->has_velocity[k])
@@ -274,10 +270,4 @@ int gsn_constraints_surface_mask(const struct gsn_constraints *constraints,
     if (surface < 0 || surface >= constraints->surface_count)
         return 0;
     return constraints->surface_mask[surface];
-}
-
-int gsn_constraints_count(const struct gsn_constraints *constraints)
-{
-    return constraints->component[0].count + constraints->component[1].count +
-           constraints->component[2].count;
 }

@@ -65,9 +65,6 @@ int gsn_constraints_set_velocity(struct gsn_constraints *constraints,
 int gsn_constraints_surface_mask(const struct gsn_constraints *constraints,
                                  int surface);
 
-/* Number of constrained (particle, component) pairs. */
-int gsn_constraints_count(const struct gsn_constraints *constraints);
-
 #ifdef __cplusplus
 }
 #endif

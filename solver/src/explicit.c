@@ -445,7 +445,6 @@ static void block_gather(const struct gsn_explicit *e, int k, const double *u,
 static int block_step(struct gsn_explicit *e, int k)
 {
     const struct gsn_point_blocks *b = e->blocks;
-    const struct gsn_shape_rows *g = &e->quadrature->gradient;
     int slots = b->block_slot[k + 1] - b->block_slot[k];
     double *du = block_work(e), *force = du + 3 * (size_t)slots;
     double *work = du + 6 * (size_t)b->max_block_slots;
@@ -467,7 +466,6 @@ static int block_step(struct gsn_explicit *e, int k)
         for (int p = p0; p < p1; ++p)
             point_scatter(e, p, force);
     }
-    (void)g;
     memcpy(&e->slot_force[3 * (size_t)b->block_slot[k]], force,
            sizeof(double) * 3 * (size_t)slots);
     return rc;

@@ -55,7 +55,6 @@ struct run {
     struct gsn_explicit *explicit_loop;
     struct boundary_set boundary[GSN_MAX_BOUNDARIES];
     struct gsn_frame frame;
-    double *particle_stress;
     hid_t results;
     FILE *history;
     long total_steps;
@@ -73,17 +72,6 @@ static double now_seconds(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static void case_name_of(const char *path, char *out, size_t size)
-{
-    const char *slash = strrchr(path, '/');
-    const char *name = slash ? slash + 1 : path;
-    size_t length = strlen(name);
-    const char *dot = strrchr(name, '.');
-    if (dot && (strcmp(dot, ".yaml") == 0 || strcmp(dot, ".yml") == 0))
-        length = (size_t)(dot - name);
-    snprintf(out, size, "%.*s", (int)length, name);
-}
-
 static int build_boundary_sets(struct run *r)
 {
     const struct gsn_model *m = &r->model;
@@ -98,12 +86,8 @@ static int build_boundary_sets(struct run *r)
         set->particle = malloc(sizeof(int) * (size_t)(m->particle_count + 1));
         GSN_CHECK(set->particle, GSN_ERR_MEMORY, "out of memory");
         for (int p = 0; p < m->particle_count; ++p)
-            for (int e = m->particle_surface_offset[p];
-                 e < m->particle_surface_offset[p + 1]; ++e)
-                if (m->particle_surface[e] == surface) {
-                    set->particle[set->count++] = p;
-                    break;
-                }
+            if (gsn_model_particle_on_surface(m, p, surface))
+                set->particle[set->count++] = p;
     }
     return GSN_OK;
 }
@@ -476,7 +460,6 @@ static void run_free(struct run *r)
     gsn_quadrature_destroy(&r->quadrature);
     gsn_model_free(&r->model);
     gsn_frame_free(&r->frame);
-    free(r->particle_stress);
     for (int b = 0; b < GSN_MAX_BOUNDARIES; ++b)
         free(r->boundary[b].particle);
     if (r->history)
@@ -550,7 +533,7 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
     GSN_CALL_GOTO(gsn_path_join(r->history_path, sizeof r->history_path, outdir,
                                 "history.csv"),
                   rc, done);
-    case_name_of(c->path, r->case_name, sizeof r->case_name);
+    gsn_case_name(c->path, r->case_name, sizeof r->case_name);
     GSN_CALL_GOTO(run_setup(r), rc, done);
     GSN_CALL_GOTO(open_outputs(r), rc, done);
     GSN_CALL_GOTO(

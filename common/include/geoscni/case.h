@@ -90,6 +90,11 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out);
 /* The same as a malloc'ed string; the caller frees it. */
 int gsn_case_to_yaml_string(const struct gsn_case *c, char **text);
 
+/* The case's name: its file name without the .yaml (or .yml) ending, e.g.
+ * "slope_I" for geometries/slope_I.yaml; names the output folder and the
+ * .pvd. */
+void gsn_case_name(const char *path, char *out, size_t size);
+
 /* The inputs of pre as one line (geometry, spacing, facet points): pre's
  * output is up to date when the model it wrote carries the same line and
  * is newer than the geometry file. */

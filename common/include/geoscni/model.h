@@ -61,6 +61,10 @@ int gsn_model_read(const char *path, struct gsn_model *m);
  * index array (facets, surfaces, tetrahedra) follows. */
 int gsn_model_sort_spatially(struct gsn_model *m);
 
+/* 1 if the particle carries the surface's tag. */
+int gsn_model_particle_on_surface(const struct gsn_model *m, int particle,
+                                  int surface);
+
 /* Index of a surface by name, or -1. */
 int gsn_model_find_surface(const struct gsn_model *m, const char *name);
 
