@@ -377,8 +377,12 @@ static int run_loop(struct run *r)
     while (e->step < r->total_steps) {
         GSN_CALL(gsn_explicit_step(e));
         GSN_CALL(check_energy(r));
+        /* Frames at the multiples of output.every before the end, and one
+         * at the last step (not also one a step before it). */
         int last = e->step == r->total_steps;
-        if (e->time >= r->next_frame_time - 0.5 * e->dt || last) {
+        int due = e->time >= r->next_frame_time - 0.5 * e->dt &&
+                  r->next_frame_time < r->c->time_end - 0.5 * e->dt;
+        if (due || last) {
             GSN_CALL(write_output(r, last));
             while (r->next_frame_time <= e->time + 0.5 * e->dt)
                 r->next_frame_time += every;
