@@ -657,7 +657,7 @@ static int read_boundary(struct reader *r, const yaml_node_t *root,
 static int read_time(struct reader *r, const yaml_node_t *root,
                      struct gsn_case *c)
 {
-    static const char *const keys[] = {"end", "step", "safety", NULL};
+    static const char *const keys[] = {"end", "step", "safety", "ramp", NULL};
     yaml_node_t *node = NULL;
     GSN_CALL(require_key(r, root, "", "time",
                          "a mapping with 'end' (s) and 'step' (s or auto)",
@@ -688,6 +688,32 @@ static int read_time(struct reader *r, const yaml_node_t *root,
               "%s:%d: 'time.safety' must be in (0, 1] (fraction of the stable "
               "step), got %g",
               r->path, line, c->time_step_safety);
+    line = node_line(node);
+    GSN_CALL(read_number(r, node, "time", "ramp", &c->time_ramp, &line));
+    GSN_CHECK(c->time_ramp >= 0.0 && c->time_ramp <= c->time_end, GSN_ERR_INPUT,
+              "%s:%d: 'time.ramp' must be between 0 and time.end (%g s): the "
+              "time over which prescribed velocities rise to their values, "
+              "got %g",
+              r->path, line, c->time_end, c->time_ramp);
+    return GSN_OK;
+}
+
+/* damping: {local: a}, Cundall's local damping (docs/solver.md). */
+static int read_damping(struct reader *r, const yaml_node_t *root,
+                        struct gsn_case *c)
+{
+    static const char *const keys[] = {"local", NULL};
+    yaml_node_t *node = mapping_find(r, root, "damping");
+    if (!node)
+        return GSN_OK;
+    GSN_CALL(check_keys(r, node, keys, "damping"));
+    int line = node_line(node);
+    GSN_CALL(
+        read_number(r, node, "damping", "local", &c->damping_local, &line));
+    GSN_CHECK(c->damping_local >= 0.0 && c->damping_local < 1.0, GSN_ERR_INPUT,
+              "%s:%d: 'damping.local' must be in [0, 1) (a fraction of the "
+              "unbalanced force; 0.05 to 0.2 is usual), got %g",
+              r->path, line, c->damping_local);
     return GSN_OK;
 }
 
@@ -731,9 +757,10 @@ static void case_set_defaults(struct gsn_case *c)
 
 static int read_document(struct reader *r, struct gsn_case *c)
 {
-    static const char *const keys[] = {
-        "geometry", "particles", "kernel", "integration", "material",
-        "gravity",  "boundary",  "time",   "output",      NULL};
+    static const char *const keys[] = {"geometry",    "particles", "kernel",
+                                       "integration", "material",  "gravity",
+                                       "boundary",    "time",      "damping",
+                                       "output",      NULL};
     yaml_node_t *root = yaml_document_get_root_node(&r->document);
     GSN_CHECK(root != NULL, GSN_ERR_INPUT,
               "%s:1: the case file is empty; expected a mapping with "
@@ -748,6 +775,7 @@ static int read_document(struct reader *r, struct gsn_case *c)
     GSN_CALL(read_gravity(r, root, c));
     GSN_CALL(read_boundary(r, root, c));
     GSN_CALL(read_time(r, root, c));
+    GSN_CALL(read_damping(r, root, c));
     GSN_CALL(read_output(r, root, c));
     return GSN_OK;
 }
@@ -905,11 +933,13 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
                 b->traction[1], b->traction[2]);
     }
     if (c->time_step_auto)
-        fprintf(out, "time: {end: %.17g, step: auto, safety: %.17g}\n",
+        fprintf(out, "time: {end: %.17g, step: auto, safety: %.17g",
                 c->time_end, c->time_step_safety);
     else
-        fprintf(out, "time: {end: %.17g, step: %.17g}\n", c->time_end,
+        fprintf(out, "time: {end: %.17g, step: %.17g", c->time_end,
                 c->time_step);
+    fprintf(out, ", ramp: %.17g}\n", c->time_ramp);
+    fprintf(out, "damping: {local: %.17g}\n", c->damping_local);
     fprintf(out, "output: {every: %.17g}\n", c->output_every);
     GSN_CHECK(!ferror(out), GSN_ERR_IO, "cannot write the resolved case");
     return GSN_OK;

@@ -3,6 +3,7 @@
 #include "geoscni/error.h"
 
 #include <klu.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,6 +27,7 @@ struct component_constraint {
 struct gsn_constraints {
     int particle_count;
     int surface_count;
+    double ramp;       /* s, time.ramp */
     int *surface_mask; /* per model surface: constrained components */
     int *slot[3];      /* slot[c][I]: position of I in B_c, or -1 */
     struct component_constraint component[3];
@@ -187,6 +189,7 @@ int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
     GSN_CHECK_GOTO(k && entry_of && velocity_of, rc, GSN_ERR_MEMORY, done,
                    "out of memory");
     k->particle_count = m->particle_count;
+    k->ramp = c->time_ramp;
     k->surface_count = m->surface_count;
     k->surface_mask = calloc((size_t)m->surface_count + 1, sizeof(int));
     GSN_CHECK_GOTO(k->surface_mask, rc, GSN_ERR_MEMORY, done, "out of memory");
@@ -211,11 +214,30 @@ done:
     return rc;
 }
 
+double gsn_ramp_factor(double ramp, enum gsn_constraint_field kind, double t)
+{
+    if (ramp <= 0.0 || t >= ramp)
+        return kind == GSN_FIELD_DISPLACEMENT ? t - 0.5 * ramp
+               : kind == GSN_FIELD_VELOCITY   ? 1.0
+                                              : 0.0;
+    const double pi = acos(-1.0), s = pi * t / ramp;
+    return kind == GSN_FIELD_DISPLACEMENT ? 0.5 * t - 0.5 * ramp / pi * sin(s)
+           : kind == GSN_FIELD_VELOCITY   ? 0.5 * (1.0 - cos(s))
+                                          : 0.5 * pi / ramp * sin(s);
+}
+
+int gsn_constraints_ramping(const struct gsn_constraints *constraints,
+                            double time)
+{
+    return time < constraints->ramp;
+}
+
 int gsn_constraints_apply(struct gsn_constraints *constraints,
                           const struct gsn_shape_rows *values,
                           enum gsn_constraint_field kind, double time,
                           double *field)
 {
+    const double factor = gsn_ramp_factor(constraints->ramp, kind, time);
     for (int c = 0; c < 3; ++c) {
         struct component_constraint *cc = &constraints->component[c];
         if (cc->count == 0)
@@ -223,10 +245,7 @@ int gsn_constraints_apply(struct gsn_constraints *constraints,
         const int *slot = constraints->slot[c];
         for (int s = 0; s < cc->count; ++s) {
             int p = cc->particle[s];
-            double target = kind == GSN_FIELD_DISPLACEMENT
-                                ? cc->velocity[s] * time
-                            : kind == GSN_FIELD_VELOCITY ? cc->velocity[s]
-                                                         : 0.0;
+            double target = cc->velocity[s] * factor;
             for (int e = values->offset[p]; e < values->offset[p + 1]; ++e) {
                 int i = values->index[e];
                 if (slot[i] < 0)

@@ -32,6 +32,18 @@ enum gsn_constraint_field {
     GSN_FIELD_ACCELERATION
 };
 
+/* The prescribed value of field `kind` at time t per unit prescribed
+ * velocity, with the velocity rising over `ramp` seconds as
+ * (1 - cos(pi t / ramp)) / 2 (continuous velocity and acceleration at t = 0
+ * and t = ramp, so the load starts without an impact), then constant:
+ * displacement t/2 - ramp/(2 pi) sin(pi t/ramp), then t - ramp/2. */
+double gsn_ramp_factor(double ramp, enum gsn_constraint_field kind, double t);
+
+/* 1 while the prescribed velocities still rise (t < time.ramp): their
+ * accelerations are then nonzero, so d and v are corrected every step. */
+int gsn_constraints_ramping(const struct gsn_constraints *constraints,
+                            double time);
+
 /* Collects the constrained particles of every boundary entry of the case
  * (each entry must name a surface of the model), checks that no particle
  * gets two different prescriptions for one component, and factorizes

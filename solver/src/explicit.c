@@ -67,7 +67,8 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
                         e->new_acceleration,
                         e->piola,
                         e->point_energy,
-                        e->thread_work};
+                        e->thread_work,
+                        e->damping_force};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         free(arrays[i]);
     free(e->point_failed);
@@ -201,6 +202,7 @@ int gsn_explicit_create(const struct gsn_model *m,
     e->bulk_modulus = c->material.bulk_modulus;
     e->shear_modulus = c->material.shear_modulus;
     e->dt = dt;
+    e->damping_local = c->damping_local;
     e->thread_count = omp_get_max_threads();
     size_t n3 = 3 * (size_t)e->particle_count;
     size_t points = (size_t)e->point_count;
@@ -227,6 +229,7 @@ int gsn_explicit_create(const struct gsn_model *m,
         {(void **)&e->increment, n3, sizeof(double)},
         {(void **)&e->point_energy, points, sizeof(double)},
         {(void **)&e->point_failed, points, sizeof(int)},
+        {(void **)&e->damping_force, n3, sizeof(double)},
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         GSN_CALL_GOTO(
@@ -582,8 +585,12 @@ int gsn_explicit_step(struct gsn_explicit *e)
     /* The constraints are linear, so once v and a satisfy them, eqs. (33)
      * and (34) keep d and v satisfying them: only a is corrected every step;
      * d and v at the first step (a prescribed velocity starts with a jump)
-     * and every CONSTRAINT_REFRESH steps against round-off drift. */
-    int refresh = e->step % CONSTRAINT_REFRESH == 0;
+     * and every CONSTRAINT_REFRESH steps against round-off drift; every
+     * step while a ramp changes the prescribed accelerations (eq. (33) is
+     * then exact only to O(dt^3)). */
+    int refresh =
+        e->step % CONSTRAINT_REFRESH == 0 ||
+        (e->constraints && gsn_constraints_ramping(e->constraints, t1 - dt));
     if (e->constraints && refresh)
         GSN_CALL(gsn_constraints_apply(
             e->constraints, &e->quadrature->particle_values,
@@ -598,10 +605,30 @@ int gsn_explicit_step(struct gsn_explicit *e)
             e->f_int[i] -= e->boundary_force[i];
     }
     double *a1 = e->new_acceleration;
-    for (int i = 0; i < e->particle_count; ++i)
-        for (int k = 0; k < 3; ++k) /* eq. (32) */
-            a1[3 * i + k] =
-                (e->f_ext[3 * i + k] - e->f_int[3 * i + k]) / e->mass[i];
+    double dissipated = 0.0;
+    for (int i = 0; i < e->particle_count; ++i) {
+        for (int k = 0; k < 3; ++k) { /* eq. (32) */
+            int at = 3 * i + k;
+            double f = e->f_ext[at] - e->f_int[at];
+            if (e->damping_local > 0.0) {
+                double damping = 0.0;
+                if (!(e->constraints &&
+                      gsn_constraints_is_constrained(e->constraints, i, k))) {
+                    double v_half =
+                        e->velocity[at] + 0.5 * dt * e->acceleration[at];
+                    damping = v_half > 0.0   ? -e->damping_local * fabs(f)
+                              : v_half < 0.0 ? e->damping_local * fabs(f)
+                                             : 0.0;
+                }
+                dissipated -=
+                    0.5 * (e->damping_force[at] + damping) *
+                    (e->displacement[at] - e->previous_displacement[at]);
+                e->damping_force[at] = damping;
+                f += damping;
+            }
+            a1[at] = f / e->mass[i];
+        }
+    }
     if (e->constraints)
         GSN_CALL(gsn_constraints_apply(e->constraints,
                                        &e->quadrature->particle_values,
@@ -644,6 +671,7 @@ int gsn_explicit_step(struct gsn_explicit *e)
     e->kinetic_energy = kinetic;
     e->internal_energy += internal;
     e->external_work += external;
+    e->damping_work += dissipated;
     e->step++;
     e->time = (double)e->step * dt;
     return GSN_OK;

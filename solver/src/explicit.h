@@ -29,7 +29,13 @@
  * exact solution (2% error measured on the essential-boundary patch test);
  * with it the patch test is exact (seed eq. (24) then holds for every test
  * function, not only for those whose support misses the boundary). The
- * reaction on a surface is the resultant of the same tractions. */
+ * reaction on a surface is the resultant of the same tractions.
+ *
+ * Local damping (Cundall 1987, as in FLAC and most MPM codes), optional:
+ * on every free component the unbalanced force f = f_ext - f_int gets
+ * -a |f| sign(v_{n+1/2}) with v_{n+1/2} = v_n + dt/2 a_n. It removes the
+ * ringing of a quasi-static load without changing the equilibrium states
+ * (the damping force vanishes with f); its work is reported. */
 #ifndef GEOSCNI_EXPLICIT_H
 #define GEOSCNI_EXPLICIT_H
 
@@ -66,6 +72,10 @@ struct gsn_explicit {
     double *state;          /* main points x state_size */
 
     double kinetic_energy, internal_energy, external_work; /* J */
+    double damping_work;   /* J dissipated by the local damping */
+    double damping_local;  /* Cundall's coefficient (case damping.local) */
+    double *damping_force; /* n x 3, N: the local damping force of the last
+                              step (its work is a trapezoid like W_ext) */
 
     /* Work arrays, owned. */
     double *previous_displacement, *previous_external, *new_acceleration;

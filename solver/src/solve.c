@@ -23,14 +23,20 @@
 #include <time.h>
 #include <unistd.h>
 
-/* A run whose energy balance KE + W_int - W_ext drifts from its value at
- * step ENERGY_CHECK_FIRST_STEP by more than this fraction of the largest of
- * the three is unstable. Central differences conserve energy to O(dt^2); a
- * stable run stays far below. The balance is taken from that step on
+/* A run whose energy balance KE + W_int + W_damping - W_ext drifts from its
+ * value at step ENERGY_CHECK_FIRST_STEP by more than this fraction of the
+ * largest of the three is unstable. Central differences conserve energy to
+ * O(dt^2); a stable run stays far below. The balance is taken from that step on
  * because a prescribed velocity starts with a jump, an impact whose work
  * the trapezoidal rule of W_ext does not see (a constant offset). */
 #define ENERGY_BALANCE_TOLERANCE 0.05
 #define ENERGY_CHECK_FIRST_STEP 10
+/* A loading run (a prescribed velocity) is quasi-static while its kinetic
+ * energy stays below this fraction of the internal energy (issue 7: 1% of
+ * the internal work). Checked from the end of time.ramp, or from
+ * QUASI_STATIC_FIRST of the run without one (before, W_int is near 0). */
+#define QUASI_STATIC_RATIO 0.01
+#define QUASI_STATIC_FIRST 0.05
 /* Wall-clock seconds between checkpoints. */
 #define CHECKPOINT_INTERVAL 30.0
 
@@ -61,8 +67,11 @@ struct run {
     int frame_count;
     double next_frame_time;
     int damage_offset, plastic_offset;
-    double energy_baseline; /* J, see ENERGY_CHECK_FIRST_STEP */
-    double last_checkpoint; /* wall-clock time of the last one, s */
+    double energy_baseline;    /* J, see ENERGY_CHECK_FIRST_STEP */
+    int loading;               /* the case prescribes a nonzero velocity */
+    double kinetic_ratio;      /* largest KE / W_int since the check began */
+    double kinetic_ratio_time; /* s, when it occurred */
+    double last_checkpoint;    /* wall-clock time of the last one, s */
 };
 
 static double now_seconds(void)
@@ -129,7 +138,8 @@ static int write_history_header(struct run *r)
                 name, name, name, name);
     }
     fprintf(r->history,
-            ",kinetic_energy,internal_energy,external_work,max_damage\n");
+            ",kinetic_energy,internal_energy,external_work,max_damage,"
+            "damping_work\n");
     GSN_CHECK(!ferror(r->history), GSN_ERR_IO, "%s: cannot write",
               r->history_path);
     return GSN_OK;
@@ -162,8 +172,8 @@ static int write_history_row(struct run *r)
     for (int j = 0; j < e->particle_count; ++j)
         if (r->frame.field[GSN_FRAME_DAMAGE][j] > max_damage)
             max_damage = r->frame.field[GSN_FRAME_DAMAGE][j];
-    fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g\n", e->kinetic_energy,
-            e->internal_energy, e->external_work, max_damage);
+    fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g\n", e->kinetic_energy,
+            e->internal_energy, e->external_work, max_damage, e->damping_work);
     fflush(r->history);
     GSN_CHECK(!ferror(r->history), GSN_ERR_IO, "%s: cannot write",
               r->history_path);
@@ -172,7 +182,7 @@ static int write_history_row(struct run *r)
 
 /* The arrays of the loop's state, in the order of
  * gsn_checkpoint_datasets, with their row counts. */
-static void checkpoint_arrays(struct gsn_explicit *e, double energy[3],
+static void checkpoint_arrays(struct gsn_explicit *e, double energy[4],
                               void *data[GSN_CHECKPOINT_DATASET_COUNT],
                               size_t rows[GSN_CHECKPOINT_DATASET_COUNT])
 {
@@ -185,6 +195,7 @@ static void checkpoint_arrays(struct gsn_explicit *e, double energy[3],
         [GSN_CHECKPOINT_STRESS] = e->stress,
         [GSN_CHECKPOINT_REACTION] = e->reaction,
         [GSN_CHECKPOINT_ENERGY] = energy,
+        [GSN_CHECKPOINT_DAMPING_FORCE] = e->damping_force,
         [GSN_CHECKPOINT_MATERIAL_STATE] = e->state};
     size_t counts[GSN_CHECKPOINT_DATASET_COUNT] = {
         [GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT] = n,
@@ -194,13 +205,14 @@ static void checkpoint_arrays(struct gsn_explicit *e, double energy[3],
         [GSN_CHECKPOINT_STRESS] = points,
         [GSN_CHECKPOINT_REACTION] = n,
         [GSN_CHECKPOINT_ENERGY] = 1,
+        [GSN_CHECKPOINT_DAMPING_FORCE] = n,
         [GSN_CHECKPOINT_MATERIAL_STATE] = (size_t)e->main_point_count};
     memcpy(data, arrays, sizeof arrays);
     memcpy(rows, counts, sizeof counts);
 }
 
 /* Writes (write = 1) or reads the checkpoint datasets. */
-static int checkpoint_transfer(struct run *r, int write, double energy[3])
+static int checkpoint_transfer(struct run *r, int write, double energy[4])
 {
     struct gsn_explicit *e = r->explicit_loop;
     void *data[GSN_CHECKPOINT_DATASET_COUNT];
@@ -227,10 +239,17 @@ static int write_checkpoint(struct run *r)
     hid_t group = H5I_INVALID_HID;
     GSN_CALL(gsn_h5_group(r->results, GSN_CHECKPOINT_GROUP, &group));
     int rc = GSN_OK;
-    double energy[3] = {e->kinetic_energy, e->internal_energy,
-                        e->external_work};
+    double energy[4] = {e->kinetic_energy, e->internal_energy, e->external_work,
+                        e->damping_work};
     GSN_CALL_GOTO(checkpoint_transfer(r, 1, energy), rc, done);
     GSN_CALL_GOTO(gsn_h5_attr_write_double(group, GSN_FRAME_ATTR_TIME, e->time),
+                  rc, done);
+    GSN_CALL_GOTO(gsn_h5_attr_write_double(
+                      group, GSN_RESULTS_ATTR_KINETIC_RATIO, r->kinetic_ratio),
+                  rc, done);
+    GSN_CALL_GOTO(gsn_h5_attr_write_double(group,
+                                           GSN_CHECKPOINT_ATTR_RATIO_TIME,
+                                           r->kinetic_ratio_time),
                   rc, done);
     GSN_CALL_GOTO(
         gsn_h5_attr_write_int(group, GSN_FRAME_ATTR_STEP, (int)e->step), rc,
@@ -251,15 +270,22 @@ static int read_checkpoint(struct run *r)
     GSN_CHECK(group >= 0, GSN_ERR_IO, "%s: cannot open the checkpoint",
               r->results_temporary);
     int rc = GSN_OK, step = 0;
-    double energy[3];
+    double energy[4];
     GSN_CALL_GOTO(checkpoint_transfer(r, 0, energy), rc, done);
     GSN_CALL_GOTO(gsn_h5_attr_read_int(group, GSN_FRAME_ATTR_STEP, &step), rc,
                   done);
+    GSN_CALL_GOTO(gsn_h5_attr_read_double(group, GSN_RESULTS_ATTR_KINETIC_RATIO,
+                                          &r->kinetic_ratio),
+                  rc, done);
+    GSN_CALL_GOTO(gsn_h5_attr_read_double(group, GSN_CHECKPOINT_ATTR_RATIO_TIME,
+                                          &r->kinetic_ratio_time),
+                  rc, done);
     e->step = step;
     e->time = (double)step * e->dt;
     e->kinetic_energy = energy[0];
     e->internal_energy = energy[1];
     e->external_work = energy[2];
+    e->damping_work = energy[3];
     GSN_CALL_GOTO(gsn_explicit_refresh(e), rc, done);
 done:
     gsn_h5_close(&group);
@@ -351,8 +377,16 @@ static int check_energy(struct run *r)
 {
     const struct gsn_explicit *e = r->explicit_loop;
     double scale = fmax(fmax(e->kinetic_energy, fabs(e->internal_energy)),
-                        fabs(e->external_work));
-    double balance = e->kinetic_energy + e->internal_energy - e->external_work;
+                        fmax(fabs(e->external_work), e->damping_work));
+    double balance = e->kinetic_energy + e->internal_energy + e->damping_work -
+                     e->external_work;
+    double check_from =
+        fmax(r->c->time_ramp, QUASI_STATIC_FIRST * r->c->time_end);
+    if (e->time >= check_from && e->internal_energy > 0.0 &&
+        e->kinetic_energy > r->kinetic_ratio * e->internal_energy) {
+        r->kinetic_ratio = e->kinetic_energy / e->internal_energy;
+        r->kinetic_ratio_time = e->time;
+    }
     if (e->step <= ENERGY_CHECK_FIRST_STEP)
         r->energy_baseline = balance;
     GSN_CHECK(e->step <= ENERGY_CHECK_FIRST_STEP || scale <= 0.0 ||
@@ -360,10 +394,10 @@ static int check_energy(struct run *r)
                       ENERGY_BALANCE_TOLERANCE * scale,
               GSN_ERR_NUMERICAL,
               "step %ld, t = %.6g s: energy is not conserved (kinetic %.4g J "
-              "+ internal %.4g J - external work %.4g J = %.4g J): the run "
-              "is unstable; reduce time.step",
+              "+ internal %.4g J + damping %.4g J - external work %.4g J = "
+              "%.4g J): the run is unstable; reduce time.step",
               e->step, e->time, e->kinetic_energy, e->internal_energy,
-              e->external_work, balance);
+              e->damping_work, e->external_work, balance);
     return GSN_OK;
 }
 
@@ -497,6 +531,10 @@ static int run_setup(struct run *r)
                 r->explicit_loop, &r->model,
                 gsn_model_find_surface(&r->model, c->boundaries[b].name),
                 c->boundaries[b].traction);
+    for (int b = 0; b < c->boundary_count; ++b)
+        for (int k = 0; k < 3; ++k)
+            r->loading |= c->boundaries[b].has_velocity[k] &&
+                          c->boundaries[b].velocity[k] != 0.0;
     r->damage_offset = gsn_material_state_offset(r->material->ops, "damage");
     r->plastic_offset = gsn_material_state_offset(r->material->ops,
                                                   "equivalent_plastic_strain");
@@ -509,6 +547,29 @@ static int run_setup(struct run *r)
                gsn_integration_name(c->integration),
                gsn_quadrature_bytes(r->quadrature) / 1e6, now_seconds() - t0,
                r->total_steps);
+    return GSN_OK;
+}
+
+/* The quasi-static check of a loading run: the largest KE / W_int, stored
+ * in results.h5 and printed, with a warning above QUASI_STATIC_RATIO. */
+static int report_quasi_static(struct run *r)
+{
+    if (!r->loading)
+        return GSN_OK;
+    GSN_CALL(gsn_h5_attr_write_double(
+        r->results, GSN_RESULTS_ATTR_KINETIC_RATIO, r->kinetic_ratio));
+    if (r->kinetic_ratio > QUASI_STATIC_RATIO)
+        fprintf(stderr,
+                "warning: the load was not quasi-static: the kinetic energy "
+                "reached %.3g%% of the internal energy at t = %.4g s (limit "
+                "%g%%); slow the load (a smaller velocity or a longer "
+                "time.ramp) or add damping.local\n",
+                100.0 * r->kinetic_ratio, r->kinetic_ratio_time,
+                100.0 * QUASI_STATIC_RATIO);
+    else if (!r->options->quiet)
+        printf("quasi-static: the kinetic energy stayed below %.3g%% of the "
+               "internal energy (largest at t = %.4g s)\n",
+               100.0 * r->kinetic_ratio, r->kinetic_ratio_time);
     return GSN_OK;
 }
 
@@ -548,6 +609,8 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
         gsn_error_pass(rc, __FILE__, __LINE__, __func__, "run_loop(r)");
     else
         rc = gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_COMPLETE, 1);
+    if (rc == GSN_OK)
+        rc = report_quasi_static(r);
 done:
     if (r->results >= 0) {
         gsn_h5_close(&r->results);

@@ -164,4 +164,44 @@ static inline int fixture_solver_from_gmsh(const struct gsn_case *c, double dt,
     return fixture_solver_from_model(c, dt, s);
 }
 
+/* Reads the columns `names` (count of them) of folder/history.csv into
+ * values[row * count + k], at most max_rows rows; returns the row count, or
+ * -1 when the file or a column is missing. */
+static inline int fixture_history(const char *folder, const char *const *names,
+                                  int count, double *values, int max_rows)
+{
+    char path[4200], line[8192];
+    snprintf(path, sizeof path, "%s/history.csv", folder);
+    FILE *file = fopen(path, "r");
+    if (!file)
+        return -1;
+    int column_of[16], rows = -1;
+    for (int k = 0; k < count && k < 16; ++k)
+        column_of[k] = -1;
+    if (count <= 16 && fgets(line, sizeof line, file)) {
+        int column = 0;
+        for (char *token = strtok(line, ",\n"); token;
+             token = strtok(NULL, ",\n"), ++column)
+            for (int k = 0; k < count; ++k)
+                if (strcmp(token, names[k]) == 0)
+                    column_of[k] = column;
+        rows = 0;
+        for (int k = 0; k < count; ++k)
+            if (column_of[k] < 0)
+                rows = -1;
+    }
+    while (rows >= 0 && rows < max_rows && fgets(line, sizeof line, file)) {
+        double value[256] = {0};
+        int n = 0;
+        for (char *token = strtok(line, ",\n"); token && n < 256;
+             token = strtok(NULL, ",\n"))
+            value[n++] = strtod(token, NULL);
+        for (int k = 0; k < count; ++k)
+            values[rows * count + k] = value[column_of[k]];
+        rows++;
+    }
+    fclose(file);
+    return rows;
+}
+
 #endif

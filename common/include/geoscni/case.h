@@ -76,6 +76,9 @@ struct gsn_case {
     int time_step_auto;      /* step: auto */
     double time_step;        /* s, when not auto */
     double time_step_safety; /* fraction of the stable step, auto only */
+    double time_ramp;        /* s over which prescribed velocities rise
+                                smoothly from 0 (0: at once) */
+    double damping_local;    /* Cundall's local damping coefficient (0: none) */
     double output_every;     /* s between frames */
 };
 

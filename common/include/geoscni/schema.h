@@ -99,6 +99,10 @@ struct gsn_dataset_info {
 #define GSN_RESULTS_ATTR_FRAME_COUNT "frame_count"
 #define GSN_RESULTS_ATTR_CASE_NAME "case_name"
 #define GSN_RESULTS_ATTR_COMPLETE "complete" /* 1: the run reached its end */
+/* The largest ratio of kinetic to internal energy of a loading run (the
+ * quasi-static check); also on the checkpoint, with the time it occurred. */
+#define GSN_RESULTS_ATTR_KINETIC_RATIO "kinetic_ratio_max"
+#define GSN_CHECKPOINT_ATTR_RATIO_TIME "kinetic_ratio_time"
 
 /* The restart checkpoint of results.h5: the group GSN_CHECKPOINT_GROUP with
  * attributes "time" (s) and "step", holding the whole state of the explicit
@@ -123,8 +127,11 @@ struct gsn_dataset_info {
       "Cauchy stress at the integration points, Voigt xx yy zz xy yz xz")      \
     X(GSN_CHECKPOINT_REACTION, "checkpoint/reaction", GSN_H5_DOUBLE, 3, "N",   \
       "reaction M a - f_ext + f_int on the constrained coefficients")          \
-    X(GSN_CHECKPOINT_ENERGY, "checkpoint/energy", GSN_H5_DOUBLE, 3, "J",       \
-      "kinetic energy, internal energy and external work (one row)")           \
+    X(GSN_CHECKPOINT_ENERGY, "checkpoint/energy", GSN_H5_DOUBLE, 4, "J",       \
+      "kinetic energy, internal energy, external work and damping work (one "  \
+      "row)")                                                                  \
+    X(GSN_CHECKPOINT_DAMPING_FORCE, "checkpoint/damping_force", GSN_H5_DOUBLE, \
+      3, "N", "local damping force of the last step on the coefficients")      \
     X(GSN_CHECKPOINT_MATERIAL_STATE, "checkpoint/material_state",              \
       GSN_H5_DOUBLE, 0, "various",                                             \
       "state variables of the material model at the nodal points; columns: "   \
