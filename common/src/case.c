@@ -444,7 +444,7 @@ static int read_integration(struct reader *r, const yaml_node_t *root,
     static const char *const methods[] = {"scni", "dni", "gauss", NULL};
     static const char *const stabilizations[] = {"none", "mscni", NULL};
     static const char *const keys[] = {"method", "points", "stabilization",
-                                       NULL};
+                                       "coefficient", NULL};
     yaml_node_t *node = mapping_find(r, root, "integration");
     if (!node)
         return GSN_OK;
@@ -478,6 +478,21 @@ static int read_integration(struct reader *r, const yaml_node_t *root,
                             stabilizations, &index));
         c->stabilization = (enum gsn_stabilization)index;
     }
+    int line = node_line(node);
+    GSN_CALL(read_number(r, node, "integration", "coefficient",
+                         &c->stabilization_coefficient, &line));
+    GSN_CHECK(c->stabilization_coefficient > 0.0 &&
+                  c->stabilization_coefficient <= 1.0,
+              GSN_ERR_INPUT,
+              "%s:%d: 'integration.coefficient' (the weight of the MSCNI "
+              "sub-cells) must be in (0, 1], got %g",
+              r->path, line, c->stabilization_coefficient);
+    GSN_CHECK(c->stabilization != GSN_STABILIZATION_NONE ||
+                  !mapping_find(r, node, "coefficient"),
+              GSN_ERR_INPUT,
+              "%s:%d: 'integration.coefficient' applies to stabilization: "
+              "mscni only",
+              r->path, line);
     return GSN_OK;
 }
 
@@ -751,6 +766,7 @@ static void case_set_defaults(struct gsn_case *c)
     c->integration = GSN_INTEGRATION_SCNI;
     c->gauss_points = GSN_DEFAULT_GAUSS_POINTS;
     c->stabilization = GSN_STABILIZATION_NONE;
+    c->stabilization_coefficient = GSN_DEFAULT_STABILIZATION_COEFFICIENT;
     c->time_step_auto = 1;
     c->time_step_safety = GSN_DEFAULT_TIME_STEP_SAFETY;
 }
@@ -901,7 +917,10 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
             gsn_integration_name(c->integration));
     if (c->integration == GSN_INTEGRATION_GAUSS)
         fprintf(out, "points: %d, ", c->gauss_points);
-    fprintf(out, "stabilization: %s}\n", stabilization_names[c->stabilization]);
+    fprintf(out, "stabilization: %s", stabilization_names[c->stabilization]);
+    if (c->stabilization != GSN_STABILIZATION_NONE)
+        fprintf(out, ", coefficient: %.17g", c->stabilization_coefficient);
+    fputs("}\n", out);
     fprintf(out,
             "material:\n  density: %.17g\n  bulk_modulus: %.17g\n"
             "  shear_modulus: %.17g\n",

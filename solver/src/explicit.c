@@ -68,7 +68,8 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
                         e->piola,
                         e->point_energy,
                         e->thread_work,
-                        e->damping_force};
+                        e->damping_force,
+                        e->stiffness_ratio};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         free(arrays[i]);
     free(e->point_failed);
@@ -230,6 +231,7 @@ int gsn_explicit_create(const struct gsn_model *m,
         {(void **)&e->point_energy, points, sizeof(double)},
         {(void **)&e->point_failed, points, sizeof(int)},
         {(void **)&e->damping_force, n3, sizeof(double)},
+        {(void **)&e->stiffness_ratio, main, sizeof(double)},
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         GSN_CALL_GOTO(
@@ -345,6 +347,26 @@ static void point_scatter(const struct gsn_explicit *e, int p, double *force)
     }
 }
 
+/* (sigma_{n+1} - Q sigma_n Q^T) : d eps / (d eps : C : d eps), clamped to
+ * [0, 1]: 1 for an elastic step, 1 - zeta for a damaged one, near 0 for
+ * plastic flow along the increment; 1 without an increment. */
+static double stiffness_ratio(const struct gsn_explicit *e, const double G[9],
+                              const double old[6], const double sigma[6])
+{
+    double deps[6], Q[9], rotated[6], elastic[6], change[6];
+    gsn_stress_update_increment(G, deps, Q);
+    memcpy(rotated, old, sizeof rotated);
+    gsn_stress_update_rotate(Q, rotated);
+    elastic_stress(e->bulk_modulus, e->shear_modulus, deps, elastic);
+    for (int a = 0; a < 6; ++a)
+        change[a] = sigma[a] - rotated[a];
+    double full = voigt_contract(elastic, deps);
+    if (!(full > 0.0))
+        return 1.0;
+    double ratio = voigt_contract(change, deps) / full;
+    return ratio < 0.0 ? 0.0 : ratio > 1.0 ? 1.0 : ratio;
+}
+
 /* Main points [p0, p1): F_{n+1} = I + H + dH, the incremental gradient on
  * the mid-step configuration G = dH (I + H + dH/2)^-1, the objective
  * update with the material (Fig. 3), the work sigma : d eps and P. */
@@ -391,6 +413,8 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
         double mean[6], F1[9];
         for (int a = 0; a < 6; ++a)
             mean[a] = 0.5 * (old[6 * b + a] + e->stress[6 * p + a]);
+        e->stiffness_ratio[p] =
+            stiffness_ratio(e, &G[9 * b], &old[6 * b], &e->stress[6 * p]);
         /* Internal work sigma : d eps over the mid-step volume. */
         e->point_energy[p] =
             voigt_contract(mean, &deps[6 * b]) * Jmid[b] * w[p];
@@ -403,19 +427,25 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
     return GSN_OK;
 }
 
-/* A stabilization point: linear elastic stress of its row (Puso et al.
- * 2008), which vanishes for every linear displacement field. */
+/* A stabilization point: the elastic stress rate of its row (Puso et al.
+ * 2008), which vanishes for every linear displacement field, scaled by the
+ * stiffness ratio of its particle's nodal point in this step: the
+ * sub-cell deviations then soften with the soil (damage, plastic flow)
+ * instead of adding an elastic stiffness that grows without bound once the
+ * soil flows (docs/solver.md, "Stabilization"). */
 static void stabilization_point(struct gsn_explicit *e, int p, const double *du)
 {
     double w = e->quadrature->point_weight[p];
     double *H = &e->displacement_gradient[9 * p];
-    double dH[9], eps[6], deps[6], sigma[6], mean[6];
+    double dH[9], deps[6], rate[6], sigma[6], mean[6];
     point_increment(e, p, du, dH);
     for (int a = 0; a < 9; ++a)
         H[a] += dH[a];
-    gsn_matrix_sym_to_voigt(H, eps);
     gsn_matrix_sym_to_voigt(dH, deps);
-    elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
+    elastic_stress(e->bulk_modulus, e->shear_modulus, deps, rate);
+    double ratio = e->stiffness_ratio[e->quadrature->point_particle[p]];
+    for (int a = 0; a < 6; ++a)
+        sigma[a] = e->stress[6 * p + a] + ratio * rate[a];
     for (int a = 0; a < 6; ++a)
         mean[a] = 0.5 * (e->stress[6 * p + a] + sigma[a]);
     memcpy(&e->stress[6 * p], sigma, sizeof sigma);
@@ -559,10 +589,18 @@ int gsn_explicit_update_stress(struct gsn_explicit *e)
     memset(e->point_failed, 0, sizeof(int) * (size_t)e->point_count);
     int parallel = parallel_worth(e->point_count);
     /* clang-format off */
-#pragma omp parallel for schedule(dynamic, 2) reduction(|:failed) if (parallel)
-    /* clang-format on */
-    for (int k = 0; k < e->blocks->block_count; ++k)
+#pragma omp parallel if (parallel)
+    {
+    /* The nodal points' blocks first: their stiffness ratios scale the
+     * stabilization points' blocks after them. */
+#pragma omp for schedule(dynamic, 2) reduction(|:failed)
+    for (int k = 0; k < e->blocks->main_block_count; ++k)
         failed |= block_step(e, k) != GSN_OK;
+#pragma omp for schedule(dynamic, 2) reduction(|:failed)
+    for (int k = e->blocks->main_block_count; k < e->blocks->block_count; ++k)
+        failed |= block_step(e, k) != GSN_OK;
+    }
+    /* clang-format on */
     if (failed) {
         GSN_CALL(report_failure(e, "det F <= 0 or the material update failed"));
         GSN_CHECK(0, GSN_ERR_NUMERICAL, "step %ld: the stress update failed",

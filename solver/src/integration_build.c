@@ -20,7 +20,7 @@ void gsn_kernel_options_from_case(const struct gsn_case *c,
     options->integration = c->integration;
     options->gauss_points = c->gauss_points;
     options->stabilization = c->stabilization;
-    options->stabilization_coefficient = GSN_DEFAULT_STABILIZATION_COEFFICIENT;
+    options->stabilization_coefficient = c->stabilization_coefficient;
     options->stabilization_subcells = GSN_DEFAULT_STABILIZATION_SUBCELLS;
 }
 

@@ -41,6 +41,8 @@ static int cut_blocks(struct gsn_point_blocks *b, int point_count,
         if (start < split && end > split)
             end = split;
         b->block_point[at] = start;
+        if (start < split)
+            b->main_block_count = at + 1;
         start = end < point_count ? end : point_count;
     }
     b->block_point[count] = point_count;

@@ -18,10 +18,11 @@ extern "C" {
 
 struct gsn_point_blocks {
     int block_count;
-    int *block_point;   /* block_count + 1: the points of each block */
-    int *block_slot;    /* block_count + 1: the slots of each block */
-    int *slot_particle; /* slots: the particle of each */
-    int *entry_slot;    /* gradient entries: the slot of each, in its block */
+    int main_block_count; /* blocks [0, this) hold the points before split */
+    int *block_point;     /* block_count + 1: the points of each block */
+    int *block_slot;      /* block_count + 1: the slots of each block */
+    int *slot_particle;   /* slots: the particle of each */
+    int *entry_slot;      /* gradient entries: the slot of each, in its block */
     int *particle_slot_offset; /* particles + 1 */
     int *particle_slot;        /* the slots of each particle, ascending */
     int max_block_slots;       /* the most slots of one block */

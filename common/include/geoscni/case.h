@@ -13,11 +13,13 @@ extern "C" {
 enum { GSN_PATH_SIZE = 4096, GSN_NAME_SIZE = 64, GSN_MAX_BOUNDARIES = 32 };
 
 /* Defaults of the optional keys. */
-#define GSN_DEFAULT_KERNEL_SUPPORT 1.5    /* a/h, seed paper section 6 */
-#define GSN_DEFAULT_KERNEL_BASIS_ORDER 1  /* linear basis */
-#define GSN_DEFAULT_FACET_POINTS 1        /* facet centroid rule */
-#define GSN_DEFAULT_GAUSS_POINTS 2        /* per direction, per cell */
-#define GSN_DEFAULT_TIME_STEP_SAFETY 0.8  /* fraction of the stable step */
+#define GSN_DEFAULT_KERNEL_SUPPORT 1.5   /* a/h, seed paper section 6 */
+#define GSN_DEFAULT_KERNEL_BASIS_ORDER 1 /* linear basis */
+#define GSN_DEFAULT_FACET_POINTS 1       /* facet centroid rule */
+#define GSN_DEFAULT_GAUSS_POINTS 2       /* per direction, per cell */
+#define GSN_DEFAULT_TIME_STEP_SAFETY 0.8 /* fraction of the stable step */
+/* MSCNI weight of the sub-cells: Puso et al. (2008) use 1 (elastic). */
+#define GSN_DEFAULT_STABILIZATION_COEFFICIENT 1.0
 #define GSN_DEFAULT_FRAMES 100            /* output.every = end / this */
 #define GSN_DEFAULT_MAX_PARTICLES 5000000 /* more needs --force */
 
@@ -68,6 +70,7 @@ struct gsn_case {
     enum gsn_integration integration;
     int gauss_points; /* per direction, GAUSS only */
     enum gsn_stabilization stabilization;
+    double stabilization_coefficient; /* MSCNI weight of the sub-cells */
     struct gsn_material material;
     double gravity[3]; /* m/s^2 */
     int boundary_count;

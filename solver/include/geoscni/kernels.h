@@ -33,9 +33,6 @@ extern "C" {
  * the reproducing conditions of eq. (18) no longer hold to 1e-8. */
 #define GSN_RK_CONDITION_LIMIT 1e8
 
-/* Stabilization coefficient of modified SCNI (Puso et al. 2008 use 1). */
-#define GSN_DEFAULT_STABILIZATION_COEFFICIENT 1.0
-
 /* Sub-cells per nodal domain of modified SCNI: 6 groups the pyramids over
  * the facets by the dominant signed axis of their normal, 2 by the sign
  * only (less than half the storage, slightly weaker: docs/kernels.md). */
