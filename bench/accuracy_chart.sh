@@ -1,16 +1,17 @@
 #!/bin/sh
 # The speed-and-accuracy chart (issue 7, point 1): one elastic problem with a
 # closed-form answer solved at several particle spacings with SCNI, SCNI +
-# MSCNI, DNI, Gauss 2x2x2 and Gauss 3x3x3; the error and the wall time of
-# every run go to a CSV, and error against wall time (log-log, with each
-# method's convergence rate against spacing in the legend) to a PNG.
+# MSCNI, DNI, Gauss 2x2x2 and Gauss 3x3x3; the error and the times (wall
+# clock and CPU) of every run go to a CSV, and error against time (log-log,
+# with each method's convergence rate against spacing in the legend) to a
+# PNG. The chart's time is the CPU time of a 1-thread run (build + steps):
+# on a shared machine, what the run would take on an idle core.
 #
 # Usage: bench/accuracy_chart.sh [BUILD_DIR] [OUT_DIR] [PROBLEMS...]
 #        (default build, docs/img, the problems `column` and
 #        `column_jittered`)
 # Writes OUT_DIR/accuracy.csv (all problems) and OUT_DIR/accuracy_PROBLEM.png.
-# Runs one at a time on THREADS threads (default 1; the wall times of the
-# chart are 1-thread times).
+# Runs one at a time on THREADS threads (default 1).
 #
 # Another problem: add it to the `problems` table of bench/accuracy_run.c
 # (its particle box, initial state, samples and error), give it a case file

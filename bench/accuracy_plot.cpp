@@ -1,5 +1,6 @@
 // The speed-and-accuracy chart (bench/accuracy_chart.sh): error against
-// wall time on log-log axes, one curve per method, from the CSV that
+// time (the CPU time of a 1-thread run, column cpu_s: on a shared machine
+// the wall time of an idle core) on log-log axes, one curve per method, from the CSV that
 // accuracy_run writes; the legend gives each method's convergence rate,
 // the least-squares slope of log(error) against log(spacing). Drawn with
 // VTK's vtkChartXY like post's plots, on post's private Xvfb when there is
@@ -77,7 +78,7 @@ bool read_csv(const char *path, const std::string &problem,
         return -1;
     };
     int c_problem = column("problem"), c_method = column("method"),
-        c_spacing = column("spacing"), c_wall = column("wall_s"),
+        c_spacing = column("spacing"), c_wall = column("cpu_s"),
         c_error = column("error");
     if (c_problem < 0 || c_method < 0 || c_spacing < 0 || c_wall < 0 ||
         c_error < 0)
@@ -141,7 +142,7 @@ int draw(const std::map<std::string, series> &data, const char *title,
     chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
     chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
     chart->GetLegend()->SetLabelSize(17);
-    const char *labels[2] = {"wall time (s)", error_label};
+    const char *labels[2] = {"time: build + steps (s, CPU of 1 thread)", error_label};
     const int axes[2] = {vtkAxis::BOTTOM, vtkAxis::LEFT};
     for (int a = 0; a < 2; ++a) {
         vtkAxis *axis = chart->GetAxis(axes[a]);
