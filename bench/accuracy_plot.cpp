@@ -1,8 +1,8 @@
 // The speed-and-accuracy chart (bench/accuracy_chart.sh): error against
 // time (the CPU time of a 1-thread run, column cpu_s: on a shared machine
-// the wall time of an idle core) on log-log axes, one curve per method, from the CSV that
-// accuracy_run writes; the legend gives each method's convergence rate,
-// the least-squares slope of log(error) against log(spacing). Drawn with
+// the wall time of an idle core) on log-log axes, one curve per method, from
+// the CSV that accuracy_run writes; the legend gives each method's convergence
+// rate, the least-squares slope of log(error) against log(spacing). Drawn with
 // VTK's vtkChartXY like post's plots, on post's private Xvfb when there is
 // no display (post/src/display.h).
 //
@@ -88,7 +88,8 @@ bool read_csv(const char *path, const std::string &problem,
         std::stringstream row(line);
         for (std::string cell; std::getline(row, cell, ',');)
             cells.push_back(cell);
-        if ((int)cells.size() < (int)names.size() || cells[c_problem] != problem)
+        if ((int)cells.size() < (int)names.size() ||
+            cells[c_problem] != problem)
             continue;
         series &s = out[cells[c_method]];
         s.spacing.push_back(std::stod(cells[c_spacing]));
@@ -142,7 +143,8 @@ int draw(const std::map<std::string, series> &data, const char *title,
     chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
     chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
     chart->GetLegend()->SetLabelSize(17);
-    const char *labels[2] = {"time: build + steps (s, CPU of 1 thread)", error_label};
+    const char *labels[2] = {"time: build + steps (s, CPU of 1 thread)",
+                             error_label};
     const int axes[2] = {vtkAxis::BOTTOM, vtkAxis::LEFT};
     for (int a = 0; a < 2; ++a) {
         vtkAxis *axis = chart->GetAxis(axes[a]);
@@ -160,8 +162,7 @@ int draw(const std::map<std::string, series> &data, const char *title,
             continue;
         const series &s = found->second;
         char label[128];
-        std::snprintf(label, sizeof label, "%s: rate %.2f", method[1],
-                      rate(s));
+        std::snprintf(label, sizeof label, "%s: rate %.2f", method[1], rate(s));
         std::printf("%s\n", label);
         vtkNew<vtkTable> table;
         vtkNew<vtkDoubleArray> xs, ys;
@@ -205,7 +206,8 @@ int draw(const std::map<std::string, series> &data, const char *title,
 int main(int argc, char **argv)
 {
     if (argc < 4 || argc > 6) {
-        std::fprintf(stderr, "usage: %s CSV PROBLEM PNG [TITLE [ERROR_LABEL]]\n",
+        std::fprintf(stderr,
+                     "usage: %s CSV PROBLEM PNG [TITLE [ERROR_LABEL]]\n",
                      argv[0]);
         return 2;
     }

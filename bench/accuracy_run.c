@@ -132,16 +132,15 @@ static void column_start(struct gsn_explicit *e, const struct gsn_case *c)
 enum { MAX_CROSSINGS = 64 };
 
 struct column_work {
-    double error2, norm2;  /* L2 sums over the samples up to 2 T */
-    double previous_top;   /* top mean u_z at the previous step */
-    double previous_time;  /* s */
-    int crossings;         /* zero crossings of the top after t = 0 */
+    double error2, norm2; /* L2 sums over the samples up to 2 T */
+    double previous_top;  /* top mean u_z at the previous step */
+    double previous_time; /* s */
+    int crossings;        /* zero crossings of the top after t = 0 */
     double crossing[MAX_CROSSINGS];
 };
 
 static void column_sample(const struct gsn_explicit *e,
-                          const struct gsn_case *c, const double *u,
-                          void *work)
+                          const struct gsn_case *c, const double *u, void *work)
 {
     struct column_work *w = work;
     const double *x = e->model->position;
@@ -228,8 +227,8 @@ static const struct method methods[] = {
 static double *lattice_axes(const int count[3], const double lo[3],
                             const double hi[3], double jitter)
 {
-    double *axis = malloc((size_t)(count[0] + count[1] + count[2]) *
-                          sizeof *axis);
+    double *axis =
+        malloc((size_t)(count[0] + count[1] + count[2]) * sizeof *axis);
     if (!axis)
         return NULL;
     double *at = axis;
@@ -251,8 +250,7 @@ static double *lattice_axes(const int count[3], const double lo[3],
 
 /* The lattice cells between the particles, as hexahedra (the Gauss
  * background cells). */
-static double *lattice_cells(const int count[3], const double *axis,
-                             int *cells)
+static double *lattice_cells(const int count[3], const double *axis, int *cells)
 {
     int c3[3] = {count[0] - 1, count[1] - 1, count[2] - 1};
     const double *coordinate[3] = {axis, axis + count[0],
@@ -295,8 +293,8 @@ static double *lattice_points(const int count[3], const double *axis)
 struct row {
     int particles, points;
     long steps;
-    double dt, pre_s, build_s, solve_s;   /* wall clock */
-    double build_cpu_s, solve_cpu_s;       /* CPU (all threads) */
+    double dt, pre_s, build_s, solve_s; /* wall clock */
+    double build_cpu_s, solve_cpu_s;    /* CPU (all threads) */
     struct measure m;
 };
 
@@ -344,13 +342,13 @@ static int run(const struct problem *p, struct gsn_case *c,
     gsn_kernel_options_from_case(c, &kernel);
     GSN_CALL_GOTO(gsn_quadrature_create(&model, &kernel, background, cells, &q),
                   rc, done);
-    GSN_CALL_GOTO(gsn_material_model_create(
-                      gsn_material_name_for_case(&c->material), &c->material,
-                      &material),
-                  rc, done);
-    GSN_CALL_GOTO(gsn_constraints_create(&model, c, &q->particle_values,
-                                         &constraints),
-                  rc, done);
+    GSN_CALL_GOTO(
+        gsn_material_model_create(gsn_material_name_for_case(&c->material),
+                                  &c->material, &material),
+        rc, done);
+    GSN_CALL_GOTO(
+        gsn_constraints_create(&model, c, &q->particle_values, &constraints),
+        rc, done);
     /* The loop refuses Gauss because of the boundary term (see the file
      * comment); here that term is zero by symmetry, so the Gauss points
      * run through the same loop with the term left out. */
@@ -440,8 +438,9 @@ int main(int argc, char **argv)
     double h = strtod(argv[4], NULL);
     int threads = argc == 6 ? atoi(argv[5]) : 1;
     if (!p || !method || !(h > 0.0) || threads < 1) {
-        fprintf(stderr, "%s: unknown problem or method, or a bad spacing or "
-                        "thread count\n",
+        fprintf(stderr,
+                "%s: unknown problem or method, or a bad spacing or "
+                "thread count\n",
                 argv[0]);
         return 2;
     }

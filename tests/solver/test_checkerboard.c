@@ -38,9 +38,9 @@ struct result {
 /* +-1: the sign of checkerboard w (bits: x, y, z) at lattice point ijk. */
 static double pattern(int w, const int ijk[3])
 {
-    int parity = ((w & 1) * ijk[0] + ((w >> 1) & 1) * ijk[1] +
-                  ((w >> 2) & 1) * ijk[2]) &
-                 1;
+    int parity =
+        ((w & 1) * ijk[0] + ((w >> 1) & 1) * ijk[1] + ((w >> 2) & 1) * ijk[2]) &
+        1;
     return parity ? -1.0 : 1.0;
 }
 
