@@ -22,8 +22,8 @@ enum { BLOCK_SIZE = 128 };
 /* Points per batch of the material update. */
 enum { CHUNK = 64 };
 /* Doubles of per-thread work per batch: G, strain increment, old stress,
- * new H, mid-step determinant. */
-enum { CHUNK_WORK = CHUNK * (9 + 6 + 6 + 9 + 1) };
+ * new H, mid-step determinant, old equivalent plastic strain. */
+enum { CHUNK_WORK = CHUNK * (9 + 6 + 6 + 9 + 1 + 1) };
 /* Power iterations of the stable-step estimate: at least the first, at most
  * the second; it stops when the Rayleigh quotient moved less than
  * POWER_TOLERANCE (relative) over the last POWER_WINDOW iterations. */
@@ -200,6 +200,8 @@ int gsn_explicit_create(const struct gsn_model *m,
     e->point_count = quadrature->point_count;
     e->main_point_count = quadrature->main_point_count;
     e->state_size = material->ops->state_size;
+    e->plastic_offset =
+        gsn_material_state_offset(material->ops, "equivalent_plastic_strain");
     e->bulk_modulus = c->material.bulk_modulus;
     e->shear_modulus = c->material.shear_modulus;
     e->dt = dt;
@@ -347,24 +349,22 @@ static void point_scatter(const struct gsn_explicit *e, int p, double *force)
     }
 }
 
-/* (sigma_{n+1} - Q sigma_n Q^T) : d eps / (d eps : C : d eps), clamped to
- * [0, 1]: 1 for an elastic step, 1 - zeta for a damaged one, near 0 for
- * plastic flow along the increment; 1 without an increment. */
-static double stiffness_ratio(const struct gsn_explicit *e, const double G[9],
-                              const double old[6], const double sigma[6])
+/* The elastic share of a nodal point's strain increment in this step,
+ * 1 - d(eq. plastic strain) / (sqrt(2/3) ||dev d eps||) clamped to [0, 1]:
+ * 1 for an elastic step, near 0 while the point flows plastically. Damage
+ * is left out on purpose: it softens every mode of the continuum alike, and
+ * a fully damaged particle still needs the stabilization's stiffness not to
+ * invert (docs/solver.md, "Stabilization"). */
+static double elastic_share(const double deps[6], double plastic_increment)
 {
-    double deps[6], Q[9], rotated[6], elastic[6], change[6];
-    gsn_stress_update_increment(G, deps, Q);
-    memcpy(rotated, old, sizeof rotated);
-    gsn_stress_update_rotate(Q, rotated);
-    elastic_stress(e->bulk_modulus, e->shear_modulus, deps, elastic);
+    double trace = (deps[0] + deps[1] + deps[2]) / 3.0, dev[6];
     for (int a = 0; a < 6; ++a)
-        change[a] = sigma[a] - rotated[a];
-    double full = voigt_contract(elastic, deps);
-    if (!(full > 0.0))
+        dev[a] = deps[a] - (a < 3 ? trace : 0.0);
+    double total = sqrt(2.0 / 3.0 * voigt_contract(dev, dev));
+    if (!(total > 0.0))
         return 1.0;
-    double ratio = voigt_contract(change, deps) / full;
-    return ratio < 0.0 ? 0.0 : ratio > 1.0 ? 1.0 : ratio;
+    double share = 1.0 - plastic_increment / total;
+    return share < 0.0 ? 0.0 : share > 1.0 ? 1.0 : share;
 }
 
 /* Main points [p0, p1): F_{n+1} = I + H + dH, the incremental gradient on
@@ -376,6 +376,7 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
     const double *w = e->quadrature->point_weight;
     double *G = work, *deps = G + 9 * CHUNK, *old = deps + 6 * CHUNK;
     double *Hnew = old + 6 * CHUNK, *Jmid = Hnew + 9 * CHUNK;
+    double *old_plastic = Jmid + CHUNK;
     int failed = 0;
     for (int p = p0; p < p1; ++p) {
         int b = p - p0;
@@ -397,6 +398,9 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
         }
         gsn_matrix_multiply(dH, Fmid_inv, &G[9 * b]);
         memcpy(&old[6 * b], &e->stress[6 * p], 6 * sizeof(double));
+        if (e->plastic_offset >= 0)
+            old_plastic[b] =
+                e->state[(size_t)e->state_size * p + e->plastic_offset];
     }
     if (failed)
         return GSN_ERR_NUMERICAL;
@@ -414,7 +418,12 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
         for (int a = 0; a < 6; ++a)
             mean[a] = 0.5 * (old[6 * b + a] + e->stress[6 * p + a]);
         e->stiffness_ratio[p] =
-            stiffness_ratio(e, &G[9 * b], &old[6 * b], &e->stress[6 * p]);
+            e->plastic_offset < 0
+                ? 1.0
+                : elastic_share(
+                      &deps[6 * b],
+                      e->state[(size_t)e->state_size * p + e->plastic_offset] -
+                          old_plastic[b]);
         /* Internal work sigma : d eps over the mid-step volume. */
         e->point_energy[p] =
             voigt_contract(mean, &deps[6 * b]) * Jmid[b] * w[p];
@@ -429,10 +438,10 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
 
 /* A stabilization point: the elastic stress rate of its row (Puso et al.
  * 2008), which vanishes for every linear displacement field, scaled by the
- * stiffness ratio of its particle's nodal point in this step: the
- * sub-cell deviations then soften with the soil (damage, plastic flow)
- * instead of adding an elastic stiffness that grows without bound once the
- * soil flows (docs/solver.md, "Stabilization"). */
+ * elastic share of its particle's nodal point in this step: the sub-cell
+ * deviations then yield with the soil instead of adding an elastic
+ * stiffness that grows without bound once it flows (docs/solver.md,
+ * "Stabilization"). */
 static void stabilization_point(struct gsn_explicit *e, int p, const double *du)
 {
     double w = e->quadrature->point_weight[p];

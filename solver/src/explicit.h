@@ -90,10 +90,12 @@ struct gsn_explicit {
     double *increment;               /* n x 3: d_{n+1} - d_n */
     int skip_boundary_term;          /* 1: leave out the boundary term (negative
                                         control of the patch test only) */
-    double *stiffness_ratio;         /* main points: the material's stiffness
-                                        in this step's strain increment over
-                                        the elastic one, in [0, 1] (scales the
-                                        stabilization of their sub-cells) */
+    double *stiffness_ratio;         /* main points: the elastic share of the
+                                        step's strain increment, in [0, 1]
+                                        (scales the stabilization of their
+                                        sub-cells) */
+    int plastic_offset;              /* equivalent_plastic_strain in the
+                                        state, -1 without plasticity */
     int *boundary_point_mask;        /* constrained components at each boundary
                                         quadrature point (bit k: component k) */
 };

@@ -389,16 +389,30 @@ static int check_energy(struct run *r)
     }
     if (e->step <= ENERGY_CHECK_FIRST_STEP)
         r->energy_baseline = balance;
-    GSN_CHECK(e->step <= ENERGY_CHECK_FIRST_STEP || scale <= 0.0 ||
-                  fabs(balance - r->energy_baseline) <=
-                      ENERGY_BALANCE_TOLERANCE * scale,
-              GSN_ERR_NUMERICAL,
-              "step %ld, t = %.6g s: energy is not conserved (kinetic %.4g J "
-              "+ internal %.4g J + damping %.4g J - external work %.4g J = "
-              "%.4g J): the run is unstable; reduce time.step",
-              e->step, e->time, e->kinetic_energy, e->internal_energy,
-              e->damping_work, e->external_work, balance);
-    return GSN_OK;
+    if (e->step <= ENERGY_CHECK_FIRST_STEP || scale <= 0.0 ||
+        fabs(balance - r->energy_baseline) <= ENERGY_BALANCE_TOLERANCE * scale)
+        return GSN_OK;
+    /* Name the particle where the instability shows most: the fastest. */
+    int fastest = 0;
+    double speed = -1.0;
+    for (int i = 0; i < e->particle_count; ++i) {
+        const double *v = &e->velocity[3 * i];
+        double s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+        if (s > speed) {
+            speed = s;
+            fastest = i;
+        }
+    }
+    const double *x = &r->model.position[3 * fastest];
+    return gsn_error_raise(
+        GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
+        "step %ld, t = %.6g s: energy is not conserved (kinetic %.4g J + "
+        "internal %.4g J + damping %.4g J - external work %.4g J = %.4g J), "
+        "fastest at particle %d (reference position %g, %g, %g; %.3g m/s): "
+        "the run is unstable; reduce time.step",
+        e->step, e->time, e->kinetic_energy, e->internal_energy,
+        e->damping_work, e->external_work, balance, fastest, x[0], x[1], x[2],
+        sqrt(speed));
 }
 
 static int run_loop(struct run *r)

@@ -253,10 +253,13 @@ int main(void)
            content[1] / content[3]);
     /* Thresholds about halfway (in ratio) between measured values
      * (docs/failure.md): softening grows SCNI's checkerboards well beyond
-     * the elastic run's, not MSCNI's, and SCNI ends with several times
-     * MSCNI's. */
+     * the elastic run's (5.2x); MSCNI's sub-cells yield with the soil
+     * (docs/solver.md, "Stabilization"), so its checkerboards grow too, but
+     * half as much (2.6x; 1.5x when the sub-cells stayed elastic, at the
+     * price of a strip-footing limit load 20% too high), and SCNI ends
+     * with several times MSCNI's (3.2x). */
     TEST_TRUE(content[1] > 2.5 * content[0]);
-    TEST_TRUE(content[3] < 2.0 * content[2]);
+    TEST_TRUE(content[3] / content[2] < 0.7 * (content[1] / content[0]));
     TEST_TRUE(content[1] > 2.5 * content[3]);
     return test_end("test_checkerboard");
 }

@@ -1,0 +1,63 @@
+#!/bin/sh
+# Bearing capacity of a smooth rigid strip footing (issue 7, point 2;
+# docs/failure.md, "Bearing capacity"): geometries/strip_footing.yaml at
+# each spacing and integration, the footing pressure against settlement,
+# compared with c N_c = 1.0568 MPa (Prandtl-Reissner with the plane-strain
+# match of the paper's Drucker-Prager; REFERENCES.md).
+# Prints, per run, the pressure over c N_c at settlements of 2.5%, 5%,
+# 7.5%, 10% and 12.5% of the footing width B = 2 m, the largest, the
+# largest kinetic/internal energy ratio and the wall time; writes the rows
+# to OUT/bearing_capacity.csv.
+# Usage: bench/bearing_capacity.sh [BUILD_DIR] [OUT] [SPACINGS] [METHODS]
+#        (default build, /tmp/geoscni_bearing, "0.2 0.1", "scni mscni")
+set -eu
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-build}
+out=${2:-/tmp/geoscni_bearing}
+spacings=${3:-0.2 0.1}
+methods=${4:-scni mscni}
+geoscni=$root/$build/bin/geoscni
+[ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
+mkdir -p "$out"
+csv=$out/bearing_capacity.csv
+echo "spacing,method,particles,q_2.5,q_5,q_7.5,q_10,q_12.5,q_max,kinetic_ratio,wall_s" >"$csv"
+echo "strip footing, B = 2 m, q / (c N_c) at settlement / B = 2.5% 5% 7.5% 10% 12.5%, max ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
+for h in $spacings; do
+    for method in $methods; do
+        case $method in
+        scni) integration="scni" ;;
+        mscni) integration="{method: scni, stabilization: mscni}" ;;
+        *) echo "unknown method $method (scni or mscni)" >&2; exit 2 ;;
+        esac
+        run=$out/h${h}_$method
+        mkdir -p "$run"
+        # 0.25 m of settlement (12.5% of B) at 0.1 m/s after a 0.5 s ramp.
+        sed -e "s|^geometry: *|geometry: $root/geometries/|" \
+            -e "s|^\( *spacing:\).*|\1 $h|" \
+            -e "s|^integration:.*|integration: $integration|" \
+            -e "s|velocity: \[null, null, -0.05\]|velocity: [null, null, -0.1]|" \
+            -e "s|^\( *end:\).*|\1 2.75|" \
+            -e "s|^\( *every:\).*|\1 0.025|" \
+            "$root/geometries/strip_footing.yaml" >"$run/strip_footing.yaml"
+        start=$(date +%s.%N)
+        "$geoscni" pre "$run/strip_footing.yaml" -o "$run" -q
+        "$geoscni" solve "$run/strip_footing.yaml" -o "$run" -q
+        wall=$(echo "$start $(date +%s.%N)" | awk '{printf "%.1f", $2 - $1}')
+        particles=$(h5ls "$run/model.h5/particles/position" |
+            sed -n 's/.*{\([0-9]*\),.*/\1/p')
+        ratio=$(h5dump -a /kinetic_ratio_max "$run/results.h5" 2>/dev/null |
+            sed -n 's/.*(0): \(.*\)/\1/p' | head -1)
+        # Footing area b T with b = 1 m and T = 2 h (strip_footing.geo).
+        row=$(awk -F, -v area="$(echo "$h" | awk '{print 2 * $1}')" '
+            NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_uz") u = i; if ($i == "footing_fz") f = i }; next }
+            { s = -$u / 2.0; q = -$f / area / 1.0568e6; if (q > max) max = q
+              for (k = 1; k <= 5; ++k) { t = 0.025 * k
+                  if (!(k in at) && s >= t) at[k] = prev_q + (q - prev_q) * (t - prev_s) / (s - prev_s) }
+              prev_s = s; prev_q = q }
+            END { printf "%.3f,%.3f,%.3f,%.3f,%.3f,%.3f", at[1], at[2], at[3], at[4], at[5], max }' \
+            "$run/history.csv")
+        echo "$h,$method,$particles,$row,$ratio,$wall" >>"$csv"
+        echo "  h = $h m ($(echo "$h" | awk '{print 2 / $1}') spacings across B), $method, $particles particles: $row (q/cNc), kinetic/internal <= $ratio, $wall s"
+    done
+done
+echo "rows: $csv"
