@@ -17,6 +17,7 @@ case_file=${2:-$root/geometries/slope_I_coarse.yaml}
 factor=${3:-5}
 settlement=${4:-0.3}
 out=${5:-/tmp/geoscni_economy_rate}
+case_file=$(cd "$(dirname "$case_file")" && pwd)/$(basename "$case_file")
 geoscni=$root/$build/bin/geoscni
 [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
 mkdir -p "$out"
