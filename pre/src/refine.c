@@ -224,9 +224,10 @@ static double distance_to_surface(const struct gsn_model *m, const int *on,
     return sqrt(best);
 }
 
-/* in[p]: 1 if particle p is in the region, 2 if also in its core (where
- * its spacing holds: a box's inside, a surface's band within a quarter of
- * its distance). region -1: outside every region (core = in). */
+/* in[p]: 2 if particle p is in the core of the region (where its spacing
+ * holds: inside a box, within a quarter of the distance of a surface), 1 if
+ * in its transition (a box grown by its distance, the rest of a surface's
+ * distance), else 0. region -1: outside every region and transition. */
 static int region_members(const struct gsn_case *c, const struct gsn_model *m,
                           int region, char *in)
 {
@@ -249,10 +250,13 @@ static int region_members(const struct gsn_case *c, const struct gsn_model *m,
     if (f->kind == GSN_REFINE_BOX) {
         for (int p = 0; p < n; ++p) {
             const double *x = &m->position[3 * p];
-            int inside = 1;
-            for (int k = 0; k < 3; ++k)
+            int inside = 1, near = 1;
+            for (int k = 0; k < 3; ++k) {
                 inside &= x[k] >= f->box[k] && x[k] <= f->box[k + 3];
-            in[p] = (char)(inside ? 2 : 0);
+                near &= x[k] >= f->box[k] - f->distance &&
+                        x[k] <= f->box[k + 3] + f->distance;
+            }
+            in[p] = (char)(inside ? 2 : near ? 1 : 0);
         }
         return GSN_OK;
     }

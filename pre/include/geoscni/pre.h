@@ -83,12 +83,13 @@ int gsn_pre_domains_box_ex(const double *points, int n, const double lo[3],
                            struct gsn_model *m, struct gsn_pre_check *report);
 
 /* Particles of a refinement region of the case (particles.refine[region];
- * region -1: the body outside every region) in a model: count, and the
- * median cell size V_I^(1/3) (m) of the interior particles (no surface
- * tag: boundary cells are cut) in it, 0 if there are none. A box region
- * holds the particles inside the box; a surface region those within its
- * distance of the surface's particles, and cell_size is taken over the
- * band within a quarter of that distance. */
+ * region -1: the body outside every region and its transition) in a model:
+ * count, and the median cell size V_I^(1/3) (m) of the interior particles
+ * (no surface tag: boundary cells are cut) in its core, 0 if none. A box
+ * region holds the particles inside the box grown by its distance, its
+ * core those inside the box; a surface region holds the particles within
+ * its distance of the surface's particles, its core those within a quarter
+ * of it. */
 int gsn_pre_refinement_stats(const struct gsn_case *c,
                              const struct gsn_model *m, int region, int *count,
                              double *cell_size);
