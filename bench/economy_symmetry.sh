@@ -25,9 +25,9 @@ mkdir -p "$work"
 
 # run NAME CASE: the case cut to END s, pre + solve; prints the wall time.
 run() {
-    sed -e "s|^geometry: *|geometry: $(dirname "$2")/|" \
+    sed -e "s|^geometry: *|geometry: $(cd "$(dirname "$2")" && pwd)/|" \
         -e "s|^\( *end:\).*|\1 $end|" \
-        -e "s|^\( *every:\).*|\1 $(echo "$end" | awk '{print $1 / 20}')|" \
+        -e "s|^\( *every:\).*|\1 $(echo "$end" | awk '{print $1 / 50}')|" \
         "$2" >"$work/$1.yaml"
     start=$(date +%s.%N)
     "$geoscni" pre "$work/$1.yaml" -o "$work/$1" -q

@@ -1,10 +1,10 @@
 /* Graded particle spacing (docs/economy.md, "Graded spacing"): each entry of
  * particles.refine becomes a gmsh size field (a Box field for a box, a
- * Distance field on the surface's entities fed to a Threshold field for a
- * surface), combined with a Min field as the background mesh; gmsh then
- * meshes with the smallest of these sizes and particles.spacing
+ * Distance field from points sampling the surface fed to a Threshold
+ * field for a surface), combined with a Min field as the background mesh; gmsh
+ * then meshes with the smallest of these sizes and particles.spacing
  * (Mesh.MeshSizeMax). gmsh 4.8 field options: Box VIn, VOut, XMin..ZMax,
- * Thickness; Distance SurfacesList; Threshold InField, SizeMin, SizeMax,
+ * Thickness; Distance PointsList; Threshold InField, SizeMin, SizeMax,
  * DistMin, DistMax; Min FieldsList. */
 #include "refine.h"
 #include "geoscni/error.h"
@@ -92,7 +92,7 @@ int pre_refine_check(const struct gsn_case *c)
         if (!entry->symmetry)
             continue;
         int tag = -1;
-        double box[6];
+        double box[6] = {0, 0, 0, 0, 0, 0};
         GSN_CALL(physical_surface_tag(entry->name, &tag));
         if (tag < 0)
             continue; /* pre_check_boundaries names it */
@@ -110,28 +110,94 @@ int pre_refine_check(const struct gsn_case *c)
     return GSN_OK;
 }
 
+/* Point entities sampling a physical surface at spacing: the nodes of a
+ * triangle mesh of its entities (made at that size and cleared again),
+ * added to the model as free points, which no tetrahedron uses. gmsh 4.8's
+ * Distance field ignores SurfacesList on surfaces of the built-in kernel
+ * (a 0.7 m refinement near Slope I's footing came out at the background
+ * 1.4 m); PointsList works with either kernel. The caller frees *points. */
+static int surface_sample(const struct gsn_case *c,
+                          const struct gsn_refinement *f, double **points,
+                          size_t *count)
+{
+    int tag = -1, ierr = 0, rc = GSN_OK;
+    GSN_CALL(physical_surface_tag(f->surface, &tag));
+    int *entities = NULL;
+    size_t entity_count = 0;
+    gmshModelGetEntitiesForPhysicalGroup(2, tag, &entities, &entity_count,
+                                         &ierr);
+    GMSH_OK(ierr, "cannot list the entities of surface %s", f->surface);
+    *points = NULL;
+    *count = 0;
+    gmshOptionSetNumber("Mesh.MeshSizeMax", f->spacing, &ierr);
+    gmshModelMeshGenerate(2, &ierr);
+    GSN_CHECK_GOTO(ierr == 0, rc, GSN_ERR_INPUT, done,
+                   "%s:%d: gmsh cannot mesh surface '%s' to sample it for "
+                   "particles.refine",
+                   c->path, f->line, f->surface);
+    size_t capacity = 0;
+    double *sample = NULL;
+    for (size_t e = 0; e < entity_count && rc == GSN_OK; ++e) {
+        size_t *tags = NULL, tag_count = 0, coord_n = 0, parametric_n = 0;
+        double *coord = NULL, *parametric = NULL;
+        gmshModelMeshGetNodes(&tags, &tag_count, &coord, &coord_n, &parametric,
+                              &parametric_n, 2, entities[e], 1, 0, &ierr);
+        if (ierr == 0 && *count + tag_count > capacity) {
+            capacity = 2 * (*count + tag_count);
+            double *grown = realloc(sample, sizeof(double) * 3 * capacity);
+            if (!grown)
+                rc = GSN_ERR_MEMORY;
+            else
+                sample = grown;
+        }
+        if (ierr == 0 && rc == GSN_OK) {
+            memcpy(sample + 3 * *count, coord, sizeof(double) * coord_n);
+            *count += coord_n / 3;
+        }
+        gmshFree(tags);
+        gmshFree(coord);
+        gmshFree(parametric);
+    }
+    *points = sample;
+    GSN_CHECK_GOTO(rc == GSN_OK, rc, GSN_ERR_MEMORY, done, "out of memory");
+    GSN_CHECK_GOTO(ierr == 0, rc, GSN_ERR_LIBRARY, done,
+                   "cannot read the mesh of surface %s", f->surface);
+done:
+    gmshFree(entities);
+    ierr = 0;
+    gmshModelMeshClear(NULL, 0, &ierr);
+    gmshOptionSetNumber("Mesh.MeshSizeMax", c->particle_spacing, &ierr);
+    if (rc == GSN_OK)
+        GMSH_OK(ierr, "cannot clear the sampling mesh of %s", f->surface);
+    return rc;
+}
+
 /* The Threshold field of a surface refinement: spacing on the surface,
  * growing linearly to particles.spacing at f->distance from it. */
 static int surface_field(const struct gsn_case *c,
-                         const struct gsn_refinement *f, int *field)
+                         const struct gsn_refinement *f, int *field,
+                         double *area)
 {
-    int tag = -1, ierr = 0;
-    GSN_CALL(physical_surface_tag(f->surface, &tag));
-    int *entities = NULL;
+    double *sample = NULL;
     size_t count = 0;
-    gmshModelGetEntitiesForPhysicalGroup(2, tag, &entities, &count, &ierr);
-    GMSH_OK(ierr, "cannot list the entities of surface %s", f->surface);
+    GSN_CALL(surface_sample(c, f, &sample, &count));
+    /* a node of a triangle mesh of size s stands for sqrt(3)/2 s^2 */
+    *area = (double)count * 0.5 * sqrt(3.0) * f->spacing * f->spacing;
     double *list = malloc(sizeof(double) * (count + 1));
-    if (!list) {
-        gmshFree(entities);
-        GSN_CHECK(0, GSN_ERR_MEMORY, "out of memory");
-    }
-    for (size_t e = 0; e < count; ++e)
-        list[e] = entities[e];
-    gmshFree(entities);
+    int ierr = 0;
+    for (size_t i = 0; list && i < count && ierr == 0; ++i)
+        list[i] = gmshModelGeoAddPoint(sample[3 * i], sample[3 * i + 1],
+                                       sample[3 * i + 2], 0.0, -1, &ierr);
+    free(sample);
+    if (list && ierr == 0)
+        gmshModelGeoSynchronize(&ierr);
+    if (!list || ierr != 0)
+        free(list);
+    GSN_CHECK(list != NULL, GSN_ERR_MEMORY, "out of memory");
+    GMSH_OK(ierr, "cannot add the sample points of surface %s", f->surface);
     int distance = gmshModelMeshFieldAdd("Distance", -1, &ierr);
     if (ierr == 0)
-        gmshModelMeshFieldSetNumbers(distance, "SurfacesList", list, count,
+        gmshModelMeshFieldSetNumbers(distance, "PointsList", list, count,
                                      &ierr);
     free(list);
     GMSH_OK(ierr, "cannot add the Distance field of surface %s", f->surface);
@@ -171,24 +237,24 @@ int pre_refine_fields(const struct gsn_case *c, double *estimate)
     for (int i = 0; i < c->refinement_count; ++i) {
         const struct gsn_refinement *f = &c->refinements[i];
         int field = -1;
-        double region = 0.0; /* volume of the refined region, m^3 */
+        double s = f->spacing, extra = 0.0; /* particles the field adds */
         if (f->kind == GSN_REFINE_BOX) {
             GSN_CALL(box_field(c, f, &field));
-            region = 1.0;
+            double region = 1.0; /* the box and its transition, m^3 */
             for (int k = 0; k < 3; ++k)
                 region *= f->box[k + 3] - f->box[k] + 2.0 * f->distance;
+            extra = region * (1.0 / (s * s * s) - 1.0 / (h * h * h));
         } else {
-            GSN_CALL(surface_field(c, f, &field));
-            int tag = -1;
-            double box[6], sides[3];
-            GSN_CALL(physical_surface_tag(f->surface, &tag));
-            GSN_CALL(physical_surface_box(tag, box));
-            for (int k = 0; k < 3; ++k)
-                sides[k] = box[k + 3] - box[k] + 2.0 * f->distance;
-            region = sides[0] * sides[1] * sides[2];
+            double area = 0.0;
+            GSN_CALL(surface_field(c, f, &field, &area));
+            /* one side of the surface, the size growing linearly from s to
+             * h over the distance D: int_0^D dd / size(dd)^3 */
+            double d = f->distance;
+            extra = area * (d / (h - s) * (0.5 / (s * s) - 0.5 / (h * h)) -
+                            d / (h * h * h));
         }
         fields[i] = field;
-        *estimate += region * (1.0 / pow(f->spacing, 3) - 1.0 / pow(h, 3));
+        *estimate += extra;
     }
     int minimum = gmshModelMeshFieldAdd("Min", -1, &ierr);
     gmshModelMeshFieldSetNumbers(minimum, "FieldsList", fields,

@@ -21,6 +21,7 @@
 #include "kernel_fixtures.h"
 
 #include <math.h>
+#include <unistd.h>
 
 static int compare(const void *a, const void *b)
 {
@@ -73,6 +74,41 @@ static double worst_condition(const struct gsn_model *m, const double *h,
     free(psi);
     gsn_rk_destroy(&rk);
     return worst;
+}
+
+/* A surface refinement (a Distance field from points sampling the
+ * surface): cells near the top face are finer than the rest. */
+static void check_surface_refinement(void)
+{
+    static struct gsn_case c;
+    TEST_INT(gsn_case_load("cases/graded_surface.yaml", &c), GSN_OK);
+    struct fixture_solver s;
+    memset(&s, 0, sizeof s);
+    char folder[] = "/tmp/geoscni-test-graded-XXXXXX", path[64];
+    TEST_TRUE(mkdtemp(folder) != NULL);
+    struct gsn_pre_options options = {.quiet = 1, .reproducible = 1};
+    int rc = gsn_pre_run(&c, folder, &options);
+    snprintf(path, sizeof path, "%s/model.h5", folder);
+    if (rc == GSN_OK)
+        rc = gsn_model_read(path, &s.model);
+    remove(path);
+    rmdir(folder);
+    if (rc != GSN_OK)
+        gsn_error_print(stderr);
+    TEST_INT(rc, GSN_OK);
+    int near = 0, far = 0;
+    double size_near = 0.0, size_far = 0.0;
+    TEST_INT(gsn_pre_refinement_stats(&c, &s.model, 0, &near, &size_near),
+             GSN_OK);
+    TEST_INT(gsn_pre_refinement_stats(&c, &s.model, -1, &far, &size_far),
+             GSN_OK);
+    printf("surface refinement: %d particles within 0.4 m of the top (median "
+           "cell %.3g m within 0.1 m), %d farther (%.3g m)\n",
+           near, size_near, far, size_far);
+    /* within 0.1 m of the top the target grows from 0.08 to 0.12 m */
+    TEST_TRUE(size_near > 0.0 && size_near < 0.6 * size_far);
+    TEST_TRUE(near > 2 * far);
+    gsn_model_free(&s.model);
 }
 
 static double stable_step(const struct gsn_case *c)
@@ -137,6 +173,8 @@ int main(void)
     double residual = fixture_patch_test(m, s.quadrature);
     printf("  SCNI patch residual %.2e\n", residual);
     TEST_TRUE(residual <= 1e-10);
+
+    check_surface_refinement();
 
     /* the stable step comes from the smallest particles */
     double graded = 0.0;
