@@ -856,8 +856,8 @@ int gsn_case_pre_signature(const struct gsn_case *c, char *out, size_t size)
                          f->box[5], f->spacing, f->distance);
         else
             n = snprintf(out + used, size - used,
-                         ";refine=surface:%s:%.17g:%.17g", f->surface,
-                         f->spacing, f->distance);
+                         ";refine=surface:%s:%.17g:%.17g:%.17g", f->surface,
+                         f->spacing, f->distance, f->width);
         GSN_CHECK(n > 0 && (size_t)n < size - used, GSN_ERR_INTERNAL,
                   "pre signature too long");
     }
@@ -983,8 +983,8 @@ _Static_assert(GSN_DEFAULT_OUTPUT_FIELDS == (1u << GSN_FRAME_FIELD_COUNT) - 1,
 static int read_refinement(struct reader *r, const yaml_node_t *node, int index,
                            double background, struct gsn_refinement *f)
 {
-    static const char *const keys[] = {"box", "surface", "spacing", "distance",
-                                       NULL};
+    static const char *const keys[] = {"box",      "surface", "spacing",
+                                       "distance", "width",   NULL};
     char context[64];
     snprintf(context, sizeof context, "particles.refine[%d]", index);
     GSN_CALL(check_keys(r, node, keys, context));
@@ -1039,7 +1039,16 @@ static int read_refinement(struct reader *r, const yaml_node_t *node, int index,
     if (f->kind == GSN_REFINE_SURFACE) {
         GSN_CALL(
             read_positive(r, node, context, "distance", "m", 1, &f->distance));
+        int line = f->line;
+        char name[96];
+        snprintf(name, sizeof name, "%s.width", context);
+        GSN_CALL(read_number(r, node, context, "width", &f->width, &line));
+        GSN_CALL(check_lower(r, line, name, f->width, 0.0, 0, "m"));
     } else {
+        GSN_CHECK(!mapping_find(r, node, "width"), GSN_ERR_INPUT,
+                  "%s:%d: '%s.width' applies to a surface refinement only; "
+                  "a box's spacing holds inside the box",
+                  r->path, node_line(mapping_find(r, node, "width")), context);
         int line = f->line;
         char name[96];
         snprintf(name, sizeof name, "%s.distance", context);
@@ -1165,7 +1174,8 @@ static void write_refinements(const struct gsn_case *c, FILE *out)
                     f->box[0], f->box[1], f->box[2], f->box[3], f->box[4],
                     f->box[5]);
         else
-            fprintf(out, "{surface: '%s', ", f->surface);
+            fprintf(out, "{surface: '%s', width: %.17g, ", f->surface,
+                    f->width);
         fprintf(out, "spacing: %.17g, distance: %.17g}%s", f->spacing,
                 f->distance, i + 1 < c->refinement_count ? ", " : "]");
     }

@@ -167,13 +167,20 @@ done:
     ierr = 0;
     gmshModelMeshClear(NULL, 0, &ierr);
     gmshOptionSetNumber("Mesh.MeshSizeMax", c->particle_spacing, &ierr);
-    if (rc == GSN_OK)
-        GMSH_OK(ierr, "cannot clear the sampling mesh of %s", f->surface);
+    if (rc == GSN_OK && ierr != 0)
+        rc =
+            gsn_error_raise(GSN_ERR_LIBRARY, __FILE__, __LINE__, __func__,
+                            "cannot clear the sampling mesh of %s", f->surface);
+    if (rc != GSN_OK) {
+        free(*points);
+        *points = NULL;
+    }
     return rc;
 }
 
-/* The Threshold field of a surface refinement: spacing on the surface,
- * growing linearly to particles.spacing at f->distance from it. */
+/* The Threshold field of a surface refinement: spacing within f->width of
+ * the surface, growing linearly to particles.spacing over f->distance
+ * beyond. */
 static int surface_field(const struct gsn_case *c,
                          const struct gsn_refinement *f, int *field,
                          double *area)
@@ -205,8 +212,9 @@ static int surface_field(const struct gsn_case *c,
     gmshModelMeshFieldSetNumber(*field, "InField", distance, &ierr);
     gmshModelMeshFieldSetNumber(*field, "SizeMin", f->spacing, &ierr);
     gmshModelMeshFieldSetNumber(*field, "SizeMax", c->particle_spacing, &ierr);
-    gmshModelMeshFieldSetNumber(*field, "DistMin", 0.0, &ierr);
-    gmshModelMeshFieldSetNumber(*field, "DistMax", f->distance, &ierr);
+    gmshModelMeshFieldSetNumber(*field, "DistMin", f->width, &ierr);
+    gmshModelMeshFieldSetNumber(*field, "DistMax", f->width + f->distance,
+                                &ierr);
     GMSH_OK(ierr, "cannot add the Threshold field of surface %s", f->surface);
     return GSN_OK;
 }
@@ -249,8 +257,9 @@ int pre_refine_fields(const struct gsn_case *c, double *estimate)
             GSN_CALL(surface_field(c, f, &field, &area));
             /* one side of the surface, the size growing linearly from s to
              * h over the distance D: int_0^D dd / size(dd)^3 */
-            double d = f->distance;
-            extra = area * (d / (h - s) * (0.5 / (s * s) - 0.5 / (h * h)) -
+            double d = f->distance, w = f->width;
+            extra = area * (w * (1.0 / (s * s * s) - 1.0 / (h * h * h)) +
+                            d / (h - s) * (0.5 / (s * s) - 0.5 / (h * h)) -
                             d / (h * h * h));
         }
         fields[i] = field;
@@ -291,9 +300,10 @@ static double distance_to_surface(const struct gsn_model *m, const int *on,
 }
 
 /* in[p]: 2 if particle p is in the core of the region (where its spacing
- * holds: inside a box, within a quarter of the distance of a surface), 1 if
- * in its transition (a box grown by its distance, the rest of a surface's
- * distance), else 0. region -1: outside every region and transition. */
+ * holds: inside a box, within the width and a quarter of the distance of a
+ * surface), 1 if in its transition (a box grown by its distance, the rest
+ * of a surface's width + distance), else 0. region -1: outside every region and
+ * transition. */
 static int region_members(const struct gsn_case *c, const struct gsn_model *m,
                           int region, char *in)
 {
@@ -335,9 +345,10 @@ static int region_members(const struct gsn_case *c, const struct gsn_model *m,
     for (int p = 0; p < n; ++p)
         if (gsn_model_particle_on_surface(m, p, surface))
             on[on_count++] = p;
+    double core = f->width + 0.25 * f->distance;
     for (int p = 0; p < n; ++p) {
         double d = distance_to_surface(m, on, on_count, &m->position[3 * p]);
-        in[p] = (char)(d <= 0.25 * f->distance ? 2 : d <= f->distance ? 1 : 0);
+        in[p] = (char)(d <= core ? 2 : d <= f->width + f->distance ? 1 : 0);
     }
     free(on);
     return GSN_OK;
@@ -394,8 +405,8 @@ int pre_refine_report(const struct gsn_case *c, const struct gsn_model *m)
             printf("pre: refine[%d] within %g m of surface '%s': %d "
                    "particles, median cell size %.3g m within %g m (spacing "
                    "%g m)\n",
-                   r, f->distance, f->surface, count, size, 0.25 * f->distance,
-                   f->spacing);
+                   r, f->width + f->distance, f->surface, count, size,
+                   f->width + 0.25 * f->distance, f->spacing);
     }
     return GSN_OK;
 }

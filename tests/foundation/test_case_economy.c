@@ -26,6 +26,8 @@ static void check_economy(const struct gsn_case *c)
     TEST_TRUE(strcmp(top->surface, "top") == 0);
     TEST_NEAR(top->spacing, 0.05, 0.0);
     TEST_NEAR(top->distance, 0.4, 0.0);
+    TEST_NEAR(top->width, 0.2, 0.0);
+    TEST_NEAR(box->width, 0.0, 0.0);
     int cut = gsn_case_find_boundary(c, "cut");
     TEST_INT(cut, 1);
     if (cut == 1) {
@@ -79,11 +81,14 @@ int main(void)
     TEST_INT(plain.output_fields, (1u << GSN_FRAME_FIELD_COUNT) - 1);
     TEST_INT(plain.output_mirror[0], '\0');
 
-    /* pre's signature changes with a refinement's spacing. */
+    /* pre's signature changes with a refinement's spacing and width. */
     char first[GSN_PRE_SIGNATURE_SIZE], second[GSN_PRE_SIGNATURE_SIZE];
     TEST_INT(gsn_case_pre_signature(&c, first, sizeof first), GSN_OK);
-    c.refinements[1].spacing = 0.06;
+    c.refinements[1].width = 0.3;
     TEST_INT(gsn_case_pre_signature(&c, second, sizeof second), GSN_OK);
+    TEST_TRUE(strcmp(first, second) != 0);
+    c.refinements[1].spacing = 0.06;
+    TEST_INT(gsn_case_pre_signature(&c, first, sizeof first), GSN_OK);
     TEST_TRUE(strcmp(first, second) != 0);
     c.refinement_count = 0;
     TEST_INT(gsn_case_pre_signature(&c, second, sizeof second), GSN_OK);

@@ -66,6 +66,7 @@ struct gsn_refinement {
     char surface[GSN_NAME_SIZE]; /* physical surface name (SURFACE) */
     double spacing;              /* m, inside the box / on the surface */
     double distance; /* m over which the spacing grows to particles.spacing */
+    double width;    /* m from a surface within which spacing holds (SURFACE) */
 };
 
 struct gsn_material {

@@ -88,8 +88,8 @@ int gsn_pre_domains_box_ex(const double *points, int n, const double lo[3],
  * (no surface tag: boundary cells are cut) in its core, 0 if none. A box
  * region holds the particles inside the box grown by its distance, its
  * core those inside the box; a surface region holds the particles within
- * its distance of the surface's particles, its core those within a quarter
- * of it. */
+ * its width + distance of the surface's particles, its core those within
+ * its width + a quarter of its distance. */
 int gsn_pre_refinement_stats(const struct gsn_case *c,
                              const struct gsn_model *m, int region, int *count,
                              double *cell_size);
