@@ -162,7 +162,7 @@ static int stage_up_to_date(const char *stage, const struct gsn_case *c,
     snprintf(model, sizeof model, "%s/model.h5", outdir);
     snprintf(results, sizeof results, "%s/results.h5", outdir);
     if (!strcmp(stage, "pre")) {
-        char signature[GSN_PATH_SIZE + 128];
+        char signature[GSN_PRE_SIGNATURE_SIZE];
         if (gsn_case_pre_signature(c, signature, sizeof signature) != GSN_OK) {
             gsn_error_clear();
             return 0;

@@ -3,6 +3,7 @@
  * an unknown key gets a did-you-mean from the same list. */
 #include "geoscni/case.h"
 #include "geoscni/error.h"
+#include "geoscni/schema.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -20,6 +21,16 @@ struct reader {
 };
 
 static const char *const component_names[3] = {"x", "y", "z"};
+
+/* economy keys (docs/economy.md), defined at the end of the readers */
+static int read_refinements(struct reader *r, const yaml_node_t *particles,
+                            struct gsn_case *c);
+static int read_symmetry(struct reader *r, const yaml_node_t *entry,
+                         const char *context, struct gsn_boundary *b);
+static int read_output_economy(struct reader *r, const yaml_node_t *output,
+                               struct gsn_case *c);
+static void write_refinements(const struct gsn_case *c, FILE *out);
+static void write_output_economy(const struct gsn_case *c, FILE *out);
 
 static int node_line(const yaml_node_t *node)
 {
@@ -396,7 +407,8 @@ static int read_geometry(struct reader *r, const yaml_node_t *root,
 static int read_particles(struct reader *r, const yaml_node_t *root,
                           struct gsn_case *c)
 {
-    static const char *const keys[] = {"spacing", "facet_points", NULL};
+    static const char *const keys[] = {"spacing", "facet_points", "refine",
+                                       NULL};
     yaml_node_t *node = NULL;
     GSN_CALL(require_key(r, root, "", "particles",
                          "a mapping with 'spacing' (m)", &node));
@@ -412,6 +424,7 @@ static int read_particles(struct reader *r, const yaml_node_t *root,
                   "or 3 (three points per facet triangle), got %d",
                   r->path, node_line(points), c->facet_points);
     }
+    GSN_CALL(read_refinements(r, node, c));
     return GSN_OK;
 }
 
@@ -591,7 +604,8 @@ static int read_vector3(struct reader *r, const yaml_node_t *node,
 static int read_boundary_entry(struct reader *r, const yaml_node_t *key,
                                const yaml_node_t *node, struct gsn_boundary *b)
 {
-    static const char *const keys[] = {"fix", "velocity", "traction", NULL};
+    static const char *const keys[] = {"fix", "velocity", "traction",
+                                       "symmetry", NULL};
     static const char *const components[] = {"x", "y", "z", NULL};
     snprintf(b->name, sizeof b->name, "%s", scalar_text(key));
     GSN_CHECK(strlen(scalar_text(key)) < GSN_NAME_SIZE, GSN_ERR_INPUT,
@@ -646,6 +660,7 @@ static int read_boundary_entry(struct reader *r, const yaml_node_t *key,
                 "acts only on free components",
                 r->path, node_line(traction), component_names[k], context);
     }
+    GSN_CALL(read_symmetry(r, node, context, b));
     return GSN_OK;
 }
 
@@ -735,7 +750,7 @@ static int read_damping(struct reader *r, const yaml_node_t *root,
 static int read_output(struct reader *r, const yaml_node_t *root,
                        struct gsn_case *c)
 {
-    static const char *const keys[] = {"every", NULL};
+    static const char *const keys[] = {"every", "fields", "mirror", NULL};
     c->output_every = c->time_end / GSN_DEFAULT_FRAMES;
     yaml_node_t *node = mapping_find(r, root, "output");
     if (!node)
@@ -743,6 +758,7 @@ static int read_output(struct reader *r, const yaml_node_t *root,
     GSN_CALL(check_keys(r, node, keys, "output"));
     GSN_CALL(
         read_positive(r, node, "output", "every", "s", 0, &c->output_every));
+    GSN_CALL(read_output_economy(r, node, c));
     return GSN_OK;
 }
 
@@ -769,6 +785,7 @@ static void case_set_defaults(struct gsn_case *c)
     c->stabilization_coefficient = GSN_DEFAULT_STABILIZATION_COEFFICIENT;
     c->time_step_auto = 1;
     c->time_step_safety = GSN_DEFAULT_TIME_STEP_SAFETY;
+    c->output_fields = GSN_DEFAULT_OUTPUT_FIELDS;
 }
 
 static int read_document(struct reader *r, struct gsn_case *c)
@@ -872,6 +889,22 @@ int gsn_case_pre_signature(const struct gsn_case *c, char *out, size_t size)
                      c->geometry, c->particle_spacing, c->facet_points);
     GSN_CHECK(n > 0 && (size_t)n < size, GSN_ERR_INTERNAL,
               "pre signature too long");
+    for (int i = 0; i < c->refinement_count; ++i) {
+        const struct gsn_refinement *f = &c->refinements[i];
+        size_t used = strlen(out);
+        if (f->kind == GSN_REFINE_BOX)
+            n = snprintf(out + used, size - used,
+                         ";refine=box:%.17g,%.17g,%.17g,%.17g,%.17g,%.17g:"
+                         "%.17g:%.17g",
+                         f->box[0], f->box[1], f->box[2], f->box[3], f->box[4],
+                         f->box[5], f->spacing, f->distance);
+        else
+            n = snprintf(out + used, size - used,
+                         ";refine=surface:%s:%.17g:%.17g:%.17g", f->surface,
+                         f->spacing, f->distance, f->width);
+        GSN_CHECK(n > 0 && (size_t)n < size - used, GSN_ERR_INTERNAL,
+                  "pre signature too long");
+    }
     return GSN_OK;
 }
 
@@ -909,8 +942,10 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
     const struct gsn_material *m = &c->material;
     fprintf(out, "# resolved parameters of %s\n", c->path);
     fprintf(out, "geometry: '%s'\n", c->geometry);
-    fprintf(out, "particles: {spacing: %.17g, facet_points: %d}\n",
+    fprintf(out, "particles: {spacing: %.17g, facet_points: %d",
             c->particle_spacing, c->facet_points);
+    write_refinements(c, out);
+    fputs("}\n", out);
     fprintf(out, "kernel: {support: %.17g, basis: %s}\n", c->kernel_support,
             basis_names[c->kernel_basis_order == 2 ? 2 : 1]);
     fprintf(out, "integration: {method: %s, ",
@@ -938,6 +973,10 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
     fprintf(out, "boundary:%s\n", c->boundary_count ? "" : " {}");
     for (int i = 0; i < c->boundary_count; ++i) {
         const struct gsn_boundary *b = &c->boundaries[i];
+        if (b->symmetry) {
+            fprintf(out, "  '%s': {symmetry: true}\n", b->name);
+            continue;
+        }
         fprintf(out, "  '%s': {fix: [", b->name);
         int first = 1;
         for (int k = 0; k < 3; ++k) {
@@ -959,7 +998,9 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
                 c->time_step);
     fprintf(out, ", ramp: %.17g}\n", c->time_ramp);
     fprintf(out, "damping: {local: %.17g}\n", c->damping_local);
-    fprintf(out, "output: {every: %.17g}\n", c->output_every);
+    fprintf(out, "output: {every: %.17g", c->output_every);
+    write_output_economy(c, out);
+    fputs("}\n", out);
     GSN_CHECK(!ferror(out), GSN_ERR_IO, "cannot write the resolved case");
     return GSN_OK;
 }
@@ -979,4 +1020,226 @@ int gsn_case_to_yaml_string(const struct gsn_case *c, char **text)
                               "gsn_case_write_yaml(c, stream)");
     }
     return GSN_OK;
+}
+
+/* ---- economy keys (docs/economy.md) ------------------------------------ */
+
+_Static_assert(GSN_DEFAULT_OUTPUT_FIELDS == (1u << GSN_FRAME_FIELD_COUNT) - 1,
+               "GSN_DEFAULT_OUTPUT_FIELDS must name every frame field");
+
+/* One entry of particles.refine: {box: [x0, y0, z0, x1, y1, z1], spacing,
+ * distance} or {surface: NAME, spacing, distance}. */
+static int read_refinement(struct reader *r, const yaml_node_t *node, int index,
+                           double background, struct gsn_refinement *f)
+{
+    static const char *const keys[] = {"box",      "surface", "spacing",
+                                       "distance", "width",   NULL};
+    char context[64];
+    snprintf(context, sizeof context, "particles.refine[%d]", index);
+    GSN_CALL(check_keys(r, node, keys, context));
+    f->line = node_line(node);
+    yaml_node_t *box = mapping_find(r, node, "box");
+    yaml_node_t *surface = mapping_find(r, node, "surface");
+    GSN_CHECK(!box != !surface, GSN_ERR_INPUT,
+              "%s:%d: '%s' must have exactly one of 'box' ([x0, y0, z0, x1, "
+              "y1, z1], m) and 'surface' (a physical surface name)",
+              r->path, f->line, context);
+    if (box) {
+        f->kind = GSN_REFINE_BOX;
+        int count = box->type == YAML_SEQUENCE_NODE
+                        ? (int)(box->data.sequence.items.top -
+                                box->data.sequence.items.start)
+                        : -1;
+        GSN_CHECK(count == 6, GSN_ERR_INPUT,
+                  "%s:%d: '%s.box' must be a list of 6 numbers [x0, y0, z0, "
+                  "x1, y1, z1] (m), got %s",
+                  r->path, node_line(box), context, node_kind(r, box));
+        for (int k = 0; k < 6; ++k) {
+            char name[96];
+            snprintf(name, sizeof name, "%s.box[%d]", context, k);
+            GSN_CALL(
+                parse_number(r, node_get(r, box->data.sequence.items.start[k]),
+                             name, &f->box[k]));
+        }
+        for (int k = 0; k < 3; ++k)
+            GSN_CHECK(f->box[k] < f->box[k + 3], GSN_ERR_INPUT,
+                      "%s:%d: '%s.box': the lower corner's %s (%g) must be "
+                      "below the upper corner's (%g)",
+                      r->path, node_line(box), context, component_names[k],
+                      f->box[k], f->box[k + 3]);
+        f->distance = GSN_DEFAULT_REFINE_BOX_DISTANCE;
+    } else {
+        f->kind = GSN_REFINE_SURFACE;
+        GSN_CHECK(surface->type == YAML_SCALAR_NODE &&
+                      !is_null_scalar(surface) &&
+                      strlen(scalar_text(surface)) < GSN_NAME_SIZE,
+                  GSN_ERR_INPUT,
+                  "%s:%d: '%s.surface' must be a physical surface name, got "
+                  "%s",
+                  r->path, node_line(surface), context, node_kind(r, surface));
+        snprintf(f->surface, sizeof f->surface, "%s", scalar_text(surface));
+    }
+    GSN_CALL(read_positive(r, node, context, "spacing", "m", 1, &f->spacing));
+    yaml_node_t *spacing = mapping_find(r, node, "spacing");
+    GSN_CHECK(f->spacing < background, GSN_ERR_INPUT,
+              "%s:%d: '%s.spacing' (%g m) must be smaller than "
+              "particles.spacing (%g m): a refinement makes particles finer",
+              r->path, node_line(spacing), context, f->spacing, background);
+    if (f->kind == GSN_REFINE_SURFACE) {
+        GSN_CALL(
+            read_positive(r, node, context, "distance", "m", 1, &f->distance));
+        int line = f->line;
+        char name[96];
+        snprintf(name, sizeof name, "%s.width", context);
+        GSN_CALL(read_number(r, node, context, "width", &f->width, &line));
+        GSN_CALL(check_lower(r, line, name, f->width, 0.0, 0, "m"));
+    } else {
+        GSN_CHECK(!mapping_find(r, node, "width"), GSN_ERR_INPUT,
+                  "%s:%d: '%s.width' applies to a surface refinement only; "
+                  "a box's spacing holds inside the box",
+                  r->path, node_line(mapping_find(r, node, "width")), context);
+        int line = f->line;
+        char name[96];
+        snprintf(name, sizeof name, "%s.distance", context);
+        GSN_CALL(
+            read_number(r, node, context, "distance", &f->distance, &line));
+        GSN_CALL(check_lower(r, line, name, f->distance, 0.0, 0, "m"));
+    }
+    return GSN_OK;
+}
+
+static int read_refinements(struct reader *r, const yaml_node_t *particles,
+                            struct gsn_case *c)
+{
+    yaml_node_t *node = mapping_find(r, particles, "refine");
+    if (!node)
+        return GSN_OK;
+    GSN_CHECK(node->type == YAML_SEQUENCE_NODE, GSN_ERR_INPUT,
+              "%s:%d: 'particles.refine' must be a list of {box: [x0, y0, z0, "
+              "x1, y1, z1], spacing: ...} or {surface: NAME, spacing: ..., "
+              "distance: ...} entries, got %s",
+              r->path, node_line(node), node_kind(r, node));
+    int count =
+        (int)(node->data.sequence.items.top - node->data.sequence.items.start);
+    GSN_CHECK(count <= GSN_MAX_REFINEMENTS, GSN_ERR_INPUT,
+              "%s:%d: 'particles.refine' has %d entries, at most %d", r->path,
+              node_line(node), count, GSN_MAX_REFINEMENTS);
+    for (int i = 0; i < count; ++i) {
+        yaml_node_t *item = node_get(r, node->data.sequence.items.start[i]);
+        char context[64];
+        snprintf(context, sizeof context, "particles.refine[%d]", i);
+        GSN_CALL(expect_mapping(r, item, context));
+        GSN_CALL(read_refinement(r, item, i, c->particle_spacing,
+                                 &c->refinements[i]));
+    }
+    c->refinement_count = count;
+    return GSN_OK;
+}
+
+/* boundary.NAME.symmetry: true holds the normal component of an
+ * axis-aligned plane surface (resolved on the model, symmetry.c); it
+ * excludes every other key of the entry. */
+static int read_symmetry(struct reader *r, const yaml_node_t *entry,
+                         const char *context, struct gsn_boundary *b)
+{
+    yaml_node_t *node = mapping_find(r, entry, "symmetry");
+    if (!node)
+        return GSN_OK;
+    static const char *const truth[] = {"false", "true", NULL};
+    char name[GSN_NAME_SIZE + 32];
+    snprintf(name, sizeof name, "%s.symmetry", context);
+    GSN_CALL(parse_word(r, node, name, truth, &b->symmetry));
+    GSN_CHECK(!b->symmetry || (!mapping_find(r, entry, "fix") &&
+                               !mapping_find(r, entry, "velocity") &&
+                               !mapping_find(r, entry, "traction")),
+              GSN_ERR_INPUT,
+              "%s:%d: '%s' is a symmetry plane: it takes no 'fix', "
+              "'velocity' or 'traction' (the component normal to the plane "
+              "is held)",
+              r->path, node_line(node), context);
+    return GSN_OK;
+}
+
+/* output.fields: which frame fields are written; output.mirror: the
+ * symmetry entry post mirrors the half model across. */
+static int read_output_economy(struct reader *r, const yaml_node_t *output,
+                               struct gsn_case *c)
+{
+    static const char *names[GSN_FRAME_FIELD_COUNT + 1];
+    for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f)
+        names[f] = gsn_frame_fields[f].path;
+    names[GSN_FRAME_FIELD_COUNT] = NULL;
+    yaml_node_t *fields = mapping_find(r, output, "fields");
+    if (fields) {
+        char list[256];
+        join_keys(names, list, sizeof list);
+        int count = fields->type == YAML_SEQUENCE_NODE
+                        ? (int)(fields->data.sequence.items.top -
+                                fields->data.sequence.items.start)
+                        : -1;
+        GSN_CHECK(count > 0, GSN_ERR_INPUT,
+                  "%s:%d: 'output.fields' must be a list of one or more of "
+                  "%s, got %s",
+                  r->path, node_line(fields), list, node_kind(r, fields));
+        c->output_fields = 0;
+        for (int i = 0; i < count; ++i) {
+            yaml_node_t *item =
+                node_get(r, fields->data.sequence.items.start[i]);
+            int f = 0;
+            GSN_CALL(parse_word(r, item, "output.fields", names, &f));
+            GSN_CHECK(!(c->output_fields & (1u << f)), GSN_ERR_INPUT,
+                      "%s:%d: 'output.fields' names '%s' twice", r->path,
+                      node_line(item), names[f]);
+            c->output_fields |= 1u << f;
+        }
+    }
+    yaml_node_t *mirror = mapping_find(r, output, "mirror");
+    if (mirror) {
+        GSN_CHECK(mirror->type == YAML_SCALAR_NODE && !is_null_scalar(mirror),
+                  GSN_ERR_INPUT,
+                  "%s:%d: 'output.mirror' must name a boundary entry with "
+                  "symmetry: true, got %s",
+                  r->path, node_line(mirror), node_kind(r, mirror));
+        int b = gsn_case_find_boundary(c, scalar_text(mirror));
+        GSN_CHECK(b >= 0 && c->boundaries[b].symmetry, GSN_ERR_INPUT,
+                  "%s:%d: 'output.mirror' is '%s', which is not a boundary "
+                  "entry with symmetry: true",
+                  r->path, node_line(mirror), scalar_text(mirror));
+        snprintf(c->output_mirror, sizeof c->output_mirror, "%s",
+                 c->boundaries[b].name);
+    }
+    return GSN_OK;
+}
+
+static void write_refinements(const struct gsn_case *c, FILE *out)
+{
+    if (!c->refinement_count)
+        return;
+    fputs(", refine: [", out);
+    for (int i = 0; i < c->refinement_count; ++i) {
+        const struct gsn_refinement *f = &c->refinements[i];
+        if (f->kind == GSN_REFINE_BOX)
+            fprintf(out, "{box: [%.17g, %.17g, %.17g, %.17g, %.17g, %.17g], ",
+                    f->box[0], f->box[1], f->box[2], f->box[3], f->box[4],
+                    f->box[5]);
+        else
+            fprintf(out, "{surface: '%s', width: %.17g, ", f->surface,
+                    f->width);
+        fprintf(out, "spacing: %.17g, distance: %.17g}%s", f->spacing,
+                f->distance, i + 1 < c->refinement_count ? ", " : "]");
+    }
+}
+
+static void write_output_economy(const struct gsn_case *c, FILE *out)
+{
+    fputs(", fields: [", out);
+    int first = 1;
+    for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f)
+        if (c->output_fields & (1u << f)) {
+            fprintf(out, "%s%s", first ? "" : ", ", gsn_frame_fields[f].path);
+            first = 0;
+        }
+    fputc(']', out);
+    if (c->output_mirror[0])
+        fprintf(out, ", mirror: '%s'", c->output_mirror);
 }

@@ -162,7 +162,7 @@ int gsn_model_write(const char *path, const struct gsn_model *m,
                                         m->particle_count),
                   rc, done);
     if (c) {
-        char signature[GSN_PATH_SIZE + 128];
+        char signature[GSN_PRE_SIGNATURE_SIZE];
         GSN_CALL_GOTO(gsn_case_pre_signature(c, signature, sizeof signature),
                       rc, done);
         GSN_CALL_GOTO(

@@ -11,6 +11,7 @@ int gsn_frame_allocate(struct gsn_frame *frame, int particle_count)
     memset(frame, 0, sizeof *frame);
     GSN_CHECK(particle_count >= 0, GSN_ERR_INTERNAL, "negative particle count");
     frame->particle_count = particle_count;
+    frame->present = (1u << GSN_FRAME_FIELD_COUNT) - 1;
     for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f) {
         size_t count = (size_t)particle_count * gsn_frame_fields[f].columns;
         frame->field[f] = calloc(count ? count : 1, sizeof(double));
@@ -60,10 +61,11 @@ int gsn_results_frame_write(hid_t file, int index,
         gsn_h5_attr_write_int(group, GSN_FRAME_ATTR_STEP, frame->step), rc,
         done);
     for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f)
-        GSN_CALL_GOTO(gsn_h5_write(group, &gsn_frame_fields[f],
-                                   (size_t)frame->particle_count,
-                                   frame->field[f]),
-                      rc, done);
+        if (frame->present & (1u << f))
+            GSN_CALL_GOTO(gsn_h5_write(group, &gsn_frame_fields[f],
+                                       (size_t)frame->particle_count,
+                                       frame->field[f]),
+                          rc, done);
     GSN_CALL_GOTO(
         gsn_h5_attr_write_int(file, GSN_RESULTS_ATTR_FRAME_COUNT, index + 1),
         rc, done);
@@ -102,11 +104,20 @@ int gsn_results_frame_read(hid_t file, int index, struct gsn_frame *frame)
     GSN_CALL_GOTO(
         gsn_h5_attr_read_int(group, GSN_FRAME_ATTR_STEP, &frame->step), rc,
         done);
-    for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f)
+    frame->present = 0;
+    for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f) {
+        size_t columns = (size_t)gsn_frame_fields[f].columns;
+        if (!gsn_h5_exists(group, gsn_frame_fields[f].path)) {
+            memset(frame->field[f], 0,
+                   sizeof(double) * columns * (size_t)frame->particle_count);
+            continue;
+        }
         GSN_CALL_GOTO(gsn_h5_read(group, &gsn_frame_fields[f],
                                   (size_t)frame->particle_count,
                                   frame->field[f]),
                       rc, done);
+        frame->present |= 1u << f;
+    }
 done:
     gsn_h5_close(&group);
     return rc;

@@ -13,6 +13,7 @@
 #include "geoscni/error.h"
 #include "geoscni/files.h"
 #include "geoscni/h5io.h"
+#include "geoscni/model.h"
 #include "geoscni/results.h"
 
 #include <errno.h>
@@ -103,6 +104,147 @@ static int post_mesh_read(const char *path, struct post_mesh *mesh)
                               "post_mesh_read_file(file, path, mesh)");
     }
     return GSN_OK;
+}
+
+/* ---- mirror of a half model (output.mirror, docs/economy.md) ----------- */
+
+/* The reflection across the plane x_axis = offset: point i of the half
+ * model has the image image[i] (i itself on the plane, else a new point
+ * after the half model's). */
+struct post_mirror {
+    int active;
+    int axis;
+    double offset;       /* m */
+    int half_count;      /* particles of the half model (of results.h5) */
+    int *image;          /* half_count */
+    struct gsn_frame in; /* a frame of the half model, read from the file */
+};
+
+static void post_mirror_free(struct post_mirror *mirror)
+{
+    free(mirror->image);
+    gsn_frame_free(&mirror->in);
+    memset(mirror, 0, sizeof *mirror);
+}
+
+static void post_mesh_bounds(struct post_mesh *mesh)
+{
+    for (int j = 0; j < 3; ++j) {
+        mesh->bounds[2 * j] = HUGE_VAL;
+        mesh->bounds[2 * j + 1] = -HUGE_VAL;
+    }
+    for (int i = 0; i < mesh->point_count; ++i)
+        for (int j = 0; j < 3; ++j) {
+            double x = mesh->reference[3 * i + j];
+            mesh->bounds[2 * j] = fmin(mesh->bounds[2 * j], x);
+            mesh->bounds[2 * j + 1] = fmax(mesh->bounds[2 * j + 1], x);
+        }
+}
+
+/* The plane of surface `name` (gsn_model_surface_plane) and the particles
+ * on it, from model.h5. */
+static int post_mirror_plane(const char *model_path, const char *name,
+                             struct post_mirror *mirror, char **on_plane)
+{
+    struct gsn_model model;
+    memset(&model, 0, sizeof model);
+    GSN_CALL(gsn_model_read(model_path, &model));
+    int rc = GSN_OK;
+    int surface = gsn_model_find_surface(&model, name);
+    GSN_CHECK_GOTO(surface >= 0, rc, GSN_ERR_INPUT, done,
+                   "output.mirror: '%s' is not a surface of %s", name,
+                   model_path);
+    GSN_CALL_GOTO(gsn_model_surface_plane(&model, surface, &mirror->axis,
+                                          &mirror->offset),
+                  rc, done);
+    *on_plane = calloc((size_t)model.particle_count + 1, 1);
+    GSN_CHECK_GOTO(*on_plane, rc, GSN_ERR_MEMORY, done, "out of memory");
+    for (int p = 0; p < model.particle_count; ++p)
+        (*on_plane)[p] =
+            (char)gsn_model_particle_on_surface(&model, p, surface);
+done:
+    gsn_model_free(&model);
+    return rc;
+}
+
+/* Extends the mesh by its reflection across the plane of surface `name`:
+ * particles on the plane are shared, the others get an image, and every
+ * tetrahedron a reflected twin (two vertices swapped: positive volume). */
+static int post_mirror_create(const char *model_path, const char *name,
+                              struct post_mesh *mesh,
+                              struct post_mirror *mirror)
+{
+    char *on_plane = NULL;
+    GSN_CALL(post_mirror_plane(model_path, name, mirror, &on_plane));
+    int n = mesh->point_count, t = mesh->tetrahedron_count, rc = GSN_OK;
+    mirror->half_count = n;
+    mirror->image = malloc(sizeof(int) * ((size_t)n + 1));
+    GSN_CHECK_GOTO(mirror->image, rc, GSN_ERR_MEMORY, done, "out of memory");
+    int total = n;
+    for (int i = 0; i < n; ++i)
+        mirror->image[i] = on_plane[i] ? i : total++;
+    double *reference = realloc(mesh->reference, sizeof(double) * 3 * total);
+    GSN_CHECK_GOTO(reference, rc, GSN_ERR_MEMORY, done, "out of memory");
+    mesh->reference = reference;
+    int *tetrahedra = realloc(mesh->tetrahedra, sizeof(int) * 8 * (size_t)t);
+    GSN_CHECK_GOTO(tetrahedra, rc, GSN_ERR_MEMORY, done, "out of memory");
+    mesh->tetrahedra = tetrahedra;
+    for (int i = 0; i < n; ++i) {
+        double *x = &reference[3 * mirror->image[i]];
+        memcpy(x, &reference[3 * i], sizeof(double[3]));
+        x[mirror->axis] = 2.0 * mirror->offset - x[mirror->axis];
+    }
+    static const int order[4] = {0, 1, 3, 2};
+    for (size_t e = 0; e < (size_t)t; ++e)
+        for (int k = 0; k < 4; ++k)
+            tetrahedra[4 * ((size_t)t + e) + k] =
+                mirror->image[tetrahedra[4 * e + order[k]]];
+    mesh->point_count = total;
+    mesh->tetrahedron_count = 2 * t;
+    post_mesh_bounds(mesh);
+    GSN_CALL_GOTO(gsn_frame_allocate(&mirror->in, n), rc, done);
+    mirror->active = 1;
+done:
+    free(on_plane);
+    return rc;
+}
+
+/* The whole body's frame from the half model's: images get the reflected
+ * fields (signs: vector component `axis` and the shear stresses
+ * with exactly one index `axis` change sign; scalars are even). */
+static void post_mirror_frame(const struct post_mirror *mirror,
+                              struct gsn_frame *out)
+{
+    static const int voigt_pair[6][2] = {{0, 0}, {1, 1}, {2, 2},
+                                         {0, 1}, {1, 2}, {0, 2}};
+    const struct gsn_frame *in = &mirror->in;
+    int a = mirror->axis;
+    out->time = in->time;
+    out->step = in->step;
+    out->present = in->present;
+    for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f) {
+        int columns = gsn_frame_fields[f].columns;
+        double sign[6];
+        for (int k = 0; k < columns; ++k) {
+            if (columns == 3)
+                sign[k] = k == a ? -1.0 : 1.0;
+            else if (columns == 6)
+                sign[k] = (voigt_pair[k][0] == a) != (voigt_pair[k][1] == a)
+                              ? -1.0
+                              : 1.0;
+            else
+                sign[k] = 1.0;
+        }
+        for (int i = 0; i < mirror->half_count; ++i) {
+            const double *v = &in->field[f][(size_t)columns * i];
+            memcpy(&out->field[f][(size_t)columns * i], v,
+                   sizeof(double) * columns);
+            double *w = &out->field[f][(size_t)columns * mirror->image[i]];
+            if (mirror->image[i] != i)
+                for (int k = 0; k < columns; ++k)
+                    w[k] = sign[k] * v[k];
+        }
+    }
 }
 
 /* The case name: the results' "case_name" attribute, else the folder's
@@ -229,13 +371,32 @@ static int post_is_picture_frame(int index, int count)
     return 0;
 }
 
+/* 1 if the frame holds the field the picture shows; else 0, with a note
+ * the first time (bit picture of *noted). */
+static int post_picture_drawable(const struct gsn_frame *frame,
+                                 enum gsn_vtk_picture picture, unsigned *noted)
+{
+    int field = gsn_vtk_picture_field(picture);
+    if (frame->present & (1u << field))
+        return 1;
+    if (!(*noted & (1u << picture)))
+        fprintf(stderr,
+                "geoscni post: note: no %s pictures: the results hold no "
+                "'%s' (output.fields)\n",
+                picture == GSN_VTK_PICTURE_DAMAGE ? "damage" : "clip",
+                gsn_frame_fields[field].path);
+    *noted |= 1u << picture;
+    return 0;
+}
+
 /* Renders the pictures of a frame: damage on the body at the chosen frames;
  * u_x, u_y, u_z and equivalent stress on the clipped half at the last. */
 static int post_frame_pictures(const struct gsn_vtk_grid *grid,
                                const struct post_mesh *mesh,
                                const struct gsn_frame *frame, int index,
                                int count, const char *folder,
-                               const char *case_name, int *written)
+                               const char *case_name, int *written,
+                               unsigned *noted)
 {
     static const struct {
         enum gsn_vtk_picture picture;
@@ -248,7 +409,8 @@ static int post_frame_pictures(const struct gsn_vtk_grid *grid,
          "equivalent stress"},
     };
     char path[GSN_PATH_SIZE], title[TITLE_SIZE];
-    if (post_is_picture_frame(index, count)) {
+    if (post_is_picture_frame(index, count) &&
+        post_picture_drawable(frame, GSN_VTK_PICTURE_DAMAGE, noted)) {
         snprintf(title, sizeof title, "%s: damage at t = %.6g s", case_name,
                  frame->time);
         int n = snprintf(path, sizeof path, "%s/damage_frame_%04d.png", folder,
@@ -263,6 +425,8 @@ static int post_frame_pictures(const struct gsn_vtk_grid *grid,
         return GSN_OK;
     double middle = 0.5 * (mesh->bounds[2] + mesh->bounds[3]);
     for (size_t k = 0; k < sizeof clips / sizeof clips[0]; ++k) {
+        if (!post_picture_drawable(frame, clips[k].picture, noted))
+            continue;
         snprintf(title, sizeof title,
                  "%s: %s on the half y >= %.4g m, t = %.6g s", case_name,
                  clips[k].what, middle, frame->time);
@@ -344,7 +508,7 @@ static int post_chart_write(const char *path, const char *title,
  * along its prescribed velocity against the mean displacement of its
  * particles along it, both as magnitudes (a footing pushed down plots up). */
 static int post_load_settlement(const struct gsn_history *history,
-                                const struct gsn_boundary *b,
+                                const struct gsn_boundary *b, double factor,
                                 const char *case_name, const char *path,
                                 double *x, double *y, int *written)
 {
@@ -376,11 +540,13 @@ static int post_load_settlement(const struct gsn_history *history,
             f += row[column[3 + j]] * direction[j] / norm;
         }
         x[r] = fabs(u);
-        y[r] = 1e-3 * fabs(f); /* N -> kN */
+        y[r] = 1e-3 * factor * fabs(f); /* N -> kN */
     }
     char title[TITLE_SIZE], x_label[TITLE_SIZE];
-    snprintf(title, sizeof title, "%s: load-settlement of '%s'", case_name,
-             b->name);
+    snprintf(title, sizeof title, "%s: load-settlement of '%s'%s", case_name,
+             b->name,
+             factor == 2.0 ? " (whole body: twice the half model's force)"
+                           : "");
     snprintf(x_label, sizeof x_label,
              "mean displacement of '%s' along its motion [m]", b->name);
     const char *names[1] = {b->name};
@@ -479,7 +645,10 @@ static int post_plots(const char *outdir, const struct gsn_case *c,
         snprintf(name, sizeof name, "load_settlement_%s.png",
                  c->boundaries[b].name);
         GSN_CALL_GOTO(gsn_path_join(path, sizeof path, folder, name), rc, done);
-        GSN_CALL_GOTO(post_load_settlement(&history, &c->boundaries[b],
+        /* a model mirrored across a symmetry plane carries half the load
+         * of the whole body: the plot shows the whole body's */
+        double factor = c->output_mirror[0] ? 2.0 : 1.0;
+        GSN_CALL_GOTO(post_load_settlement(&history, &c->boundaries[b], factor,
                                            case_name, path, values,
                                            values + history.row_count, written),
                       rc, done);
@@ -511,6 +680,7 @@ struct post_state {
     struct gsn_vtk_grid *grid;
     struct gsn_display display;
     struct gsn_case *c;
+    struct post_mirror mirror;
 };
 
 static int post_run(const char *outdir, const struct gsn_post_options *o,
@@ -535,8 +705,11 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
     size_t rows = 0;
     hid_t first = H5Gopen2(s->results, "frames/000000", H5P_DEFAULT);
     GSN_CHECK(first >= 0, GSN_ERR_INPUT, "results.h5 lacks frames/000000");
-    int rc =
-        gsn_h5_rows(first, &gsn_frame_fields[GSN_FRAME_DISPLACEMENT], &rows);
+    int field = 0; /* the first field written (output.fields) */
+    while (field + 1 < GSN_FRAME_FIELD_COUNT &&
+           !gsn_h5_exists(first, gsn_frame_fields[field].path))
+        ++field;
+    int rc = gsn_h5_rows(first, &gsn_frame_fields[field], &rows);
     gsn_h5_close(&first);
     GSN_CALL(rc);
     GSN_CHECK(rows == (size_t)s->mesh.point_count, GSN_ERR_INPUT,
@@ -545,6 +718,16 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
               outdir, rows, s->mesh.point_count);
     GSN_CALL(post_case_name(s->results, outdir, case_name, sizeof case_name));
     int have_case = post_case_load(s->results, s->c);
+    if (have_case && s->c->output_mirror[0]) {
+        GSN_CALL(post_mirror_create(path, s->c->output_mirror, &s->mesh,
+                                    &s->mirror));
+        if (!o->quiet)
+            printf("post: mirrored across '%s' (%c = %g m): %d particles, %d "
+                   "tetrahedra\n",
+                   s->c->output_mirror, "xyz"[s->mirror.axis],
+                   s -> mirror.offset, s->mesh.point_count,
+                   s->mesh.tetrahedron_count);
+    }
 
     int pictures = !o->no_pictures;
     if (pictures) {
@@ -567,9 +750,15 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
 
     /* One frame at a time: read, write, free. */
     int picture_count = 0, plot_count = 0;
+    unsigned noted = 0;
     GSN_CALL(gsn_frame_allocate(&s->frame, s->mesh.point_count));
     for (int k = 0; k < count; ++k) {
-        GSN_CALL(gsn_results_frame_read(s->results, k, &s->frame));
+        if (s->mirror.active) {
+            GSN_CALL(gsn_results_frame_read(s->results, k, &s->mirror.in));
+            post_mirror_frame(&s->mirror, &s->frame);
+        } else {
+            GSN_CALL(gsn_results_frame_read(s->results, k, &s->frame));
+        }
         GSN_CALL(gsn_vtk_grid_create(s->mesh.point_count, s->mesh.reference,
                                      s->mesh.tetrahedron_count,
                                      s->mesh.tetrahedra, &s->frame, &s->grid));
@@ -578,7 +767,7 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
         if (pictures)
             GSN_CALL(post_frame_pictures(s->grid, &s->mesh, &s->frame, k, count,
                                          picture_folder, case_name,
-                                         &picture_count));
+                                         &picture_count, &noted));
         gsn_vtk_grid_destroy(&s->grid);
     }
     post_remove_stale_frames(outdir, count);
@@ -611,6 +800,7 @@ int gsn_post_run(const char *outdir, const struct gsn_post_options *options)
     gsn_vtk_grid_destroy(&s.grid);
     gsn_frame_free(&s.frame);
     post_mesh_free(&s.mesh);
+    post_mirror_free(&s.mirror);
     gsn_h5_close(&s.results);
     gsn_display_close(&s.display);
     free(s.c);

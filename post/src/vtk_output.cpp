@@ -121,7 +121,7 @@ struct picture_spec {
     bool clip;
 };
 
-picture_spec picture_spec_of(enum gsn_vtk_picture picture)
+picture_spec picture_spec_of(int picture)
 {
     switch (picture) {
     case GSN_VTK_PICTURE_CLIP_UX:
@@ -441,14 +441,17 @@ extern "C" int gsn_vtk_grid_create(int point_count, const double *reference,
     try {
         g = new gsn_vtk_grid;
         g->grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+        // without displacements (output.fields) the points stay at X
+        const bool moved = frame->present & (1u << GSN_FRAME_DISPLACEMENT);
         const double *u = frame->field[GSN_FRAME_DISPLACEMENT];
         vtkNew<vtkPoints> points;
         points->SetDataTypeToDouble();
         points->SetNumberOfPoints(point_count);
         for (vtkIdType i = 0; i < point_count; ++i)
-            points->SetPoint(i, reference[3 * i] + u[3 * i],
-                             reference[3 * i + 1] + u[3 * i + 1],
-                             reference[3 * i + 2] + u[3 * i + 2]);
+            points->SetPoint(
+                i, reference[3 * i] + (moved ? u[3 * i] : 0.0),
+                reference[3 * i + 1] + (moved ? u[3 * i + 1] : 0.0),
+                reference[3 * i + 2] + (moved ? u[3 * i + 2] : 0.0));
         g->grid->SetPoints(points);
 
         vtkNew<vtkIdTypeArray> offsets, connectivity;
@@ -466,6 +469,8 @@ extern "C" int gsn_vtk_grid_create(int point_count, const double *reference,
                                              "xy", "yz", "xz"};
         static const char *const xyz[3] = {"x", "y", "z"};
         for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f) {
+            if (!(frame->present & (1u << f)))
+                continue; // not written (output.fields)
             int columns = gsn_frame_fields[f].columns;
             vtkNew<vtkDoubleArray> array;
             array->SetName(gsn_frame_fields[f].path);
@@ -493,6 +498,11 @@ extern "C" int gsn_vtk_grid_create(int point_count, const double *reference,
     }
     *grid = g;
     return GSN_OK;
+}
+
+extern "C" int gsn_vtk_picture_field(enum gsn_vtk_picture picture)
+{
+    return picture_spec_of(picture).field;
 }
 
 extern "C" void gsn_vtk_grid_destroy(struct gsn_vtk_grid **grid)

@@ -43,6 +43,9 @@ enum gsn_vtk_picture {
     GSN_VTK_PICTURE_COUNT
 };
 
+/* The frame field (enum gsn_frame_field) a picture shows. */
+int gsn_vtk_picture_field(enum gsn_vtk_picture picture);
+
 /* Renders a picture of the grid to a PNG (needs an X display). bounds
  * (xmin xmax ymin ymax zmin zmax, m) are the reference body's: they fix the
  * camera and the clipping mid-plane y = (ymin + ymax) / 2 for every frame.

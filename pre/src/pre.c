@@ -10,6 +10,7 @@
 #include "geoscni/error.h"
 #include "geoscni/files.h"
 #include "polyhedron.h"
+#include "refine.h"
 
 #include <fenv.h>
 #include <gmshc.h>
@@ -620,10 +621,12 @@ static int pre_mesh(const struct gsn_case *c,
 {
     GSN_CALL(gmsh_open_geometry(c));
     GSN_CALL(pre_check_boundaries(c));
+    GSN_CALL(pre_refine_check(c));
     double volume = 0.0;
     GSN_CALL(estimate_volume(c, &volume));
     double h = c->particle_spacing;
     *estimate = volume / (h * h * h);
+    GSN_CALL(pre_refine_fields(c, estimate));
     GSN_CHECK(options->force || *estimate <= GSN_DEFAULT_MAX_PARTICLES,
               GSN_ERR_INPUT,
               "%s: spacing %g m in a body of %.4g m^3 gives about %.3g "
@@ -782,6 +785,7 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
                "checks %.2f, writing %.2f -> %s\n",
                omp_get_wtime() - t0, t_mesh, r.time_delaunay, r.time_cells,
                t_check, t_write, path);
+        GSN_CALL_GOTO(pre_refine_report(c, &m), rc, done);
     }
 done:
     gsn_model_free(&m);

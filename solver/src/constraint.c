@@ -174,7 +174,8 @@ static int component_build(struct gsn_constraints *k, int c,
     return GSN_OK;
 }
 
-int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
+int gsn_constraints_create(const struct gsn_model *m,
+                           const struct gsn_case *given,
                            const struct gsn_shape_rows *values,
                            struct gsn_constraints **out)
 {
@@ -185,9 +186,13 @@ int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
     struct gsn_constraints *k = calloc(1, sizeof *k);
     int *entry_of = malloc(sizeof(int) * 3 * (n ? n : 1));
     double *velocity_of = malloc(sizeof(double) * 3 * (n ? n : 1));
+    /* symmetry planes hold their normal component: a copy with it fixed */
+    struct gsn_case *c = malloc(sizeof *c);
     int rc = GSN_OK;
-    GSN_CHECK_GOTO(k && entry_of && velocity_of, rc, GSN_ERR_MEMORY, done,
+    GSN_CHECK_GOTO(k && entry_of && velocity_of && c, rc, GSN_ERR_MEMORY, done,
                    "out of memory");
+    *c = *given;
+    GSN_CALL_GOTO(gsn_case_resolve_symmetry(c, m), rc, done);
     k->particle_count = m->particle_count;
     k->ramp = c->time_ramp;
     k->surface_count = m->surface_count;
@@ -208,6 +213,7 @@ int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
 done:
     free(entry_of);
     free(velocity_of);
+    free(c);
     if (rc != GSN_OK)
         gsn_constraints_destroy(&k);
     *out = k;

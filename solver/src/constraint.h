@@ -46,8 +46,9 @@ int gsn_constraints_ramping(const struct gsn_constraints *constraints,
 
 /* Collects the constrained particles of every boundary entry of the case
  * (each entry must name a surface of the model), checks that no particle
- * gets two different prescriptions for one component, and factorizes
- * Lambda_c. values: Psi_I(X_J), one row per particle J. */
+ * gets two different prescriptions for one component (a symmetry entry
+ * holds the component normal to its plane, gsn_case_resolve_symmetry), and
+ * factorizes Lambda_c. values: Psi_I(X_J), one row per particle J. */
 int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
                            const struct gsn_shape_rows *values,
                            struct gsn_constraints **out);

@@ -101,31 +101,44 @@ static int build_boundary_sets(struct run *r)
     return GSN_OK;
 }
 
-/* Fills r->frame from the loop's state at its current time. */
+/* Fills r->frame from the loop's state at its current time: the fields of
+ * output.fields (docs/economy.md, "Outputs"), and always the displacement
+ * and damage, which the history row needs; nothing else is computed. */
 static void fill_frame(struct run *r)
 {
     const struct gsn_explicit *e = r->explicit_loop;
     struct gsn_frame *f = &r->frame;
     int n = e->particle_count;
+    unsigned wanted = r->c->output_fields;
+    int stress = (wanted & (1u << GSN_FRAME_STRESS)) != 0;
+    int equivalent = (wanted & (1u << GSN_FRAME_EQUIVALENT_STRESS)) != 0;
+    int plastic = (wanted & (1u << GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN)) != 0;
     f->time = e->time;
     f->step = (int)e->step;
+    f->present = wanted;
     gsn_explicit_particle_field(e, e->displacement,
                                 f->field[GSN_FRAME_DISPLACEMENT]);
-    gsn_explicit_particle_field(e, e->velocity, f->field[GSN_FRAME_VELOCITY]);
-    gsn_explicit_particle_stress(e, f->field[GSN_FRAME_STRESS]);
+    if (wanted & (1u << GSN_FRAME_VELOCITY))
+        gsn_explicit_particle_field(e, e->velocity,
+                                    f->field[GSN_FRAME_VELOCITY]);
+    if (stress || equivalent)
+        gsn_explicit_particle_stress(e, f->field[GSN_FRAME_STRESS]);
     for (int j = 0; j < n; ++j) {
-        const double *s = &f->field[GSN_FRAME_STRESS][6 * j];
-        double mean = gsn_voigt_trace(s) / 3.0, dev[6];
-        memcpy(dev, s, sizeof dev);
-        for (int k = 0; k < 3; ++k)
-            dev[k] -= mean;
-        f->field[GSN_FRAME_EQUIVALENT_STRESS][j] =
-            sqrt(1.5) * gsn_voigt_norm(dev);
+        if (equivalent) {
+            const double *s = &f->field[GSN_FRAME_STRESS][6 * j];
+            double mean = gsn_voigt_trace(s) / 3.0, dev[6];
+            memcpy(dev, s, sizeof dev);
+            for (int k = 0; k < 3; ++k)
+                dev[k] -= mean;
+            f->field[GSN_FRAME_EQUIVALENT_STRESS][j] =
+                sqrt(1.5) * gsn_voigt_norm(dev);
+        }
         const double *state = &e->state[(size_t)e->state_size * j];
         f->field[GSN_FRAME_DAMAGE][j] =
             r->damage_offset >= 0 ? state[r->damage_offset] : 0.0;
-        f->field[GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN][j] =
-            r->plastic_offset >= 0 ? state[r->plastic_offset] : 0.0;
+        if (plastic)
+            f->field[GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN][j] =
+                r->plastic_offset >= 0 ? state[r->plastic_offset] : 0.0;
     }
 }
 

@@ -39,6 +39,12 @@ expect missing_surface "boundary 'footing' names no physical surface" \
     pre cases/missing_surface.yaml -o "$work/out_missing_surface"
 expect too_many "more than 5000000" \
     pre cases/too_many.yaml -o "$work/out_too_many"
+expect symmetry_slanted \
+    "symmetry_slanted.yaml:8: 'boundary.face.symmetry': surface 'face' is not one plane normal to x, y or z" \
+    pre cases/symmetry_slanted.yaml -o "$work/out_symmetry_slanted"
+expect refine_missing_surface \
+    "refine_missing_surface.yaml:7: 'particles.refine\[0\].surface' is 'footing', which is not a physical surface" \
+    pre cases/refine_missing_surface.yaml -o "$work/out_refine_missing_surface"
 touch "$work/a_file"
 expect unwritable_outdir "cannot create the output folder" \
     pre ../../geometries/box.yaml -o "$work/a_file/out"

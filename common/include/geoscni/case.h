@@ -23,6 +23,13 @@ enum { GSN_PATH_SIZE = 4096, GSN_NAME_SIZE = 64, GSN_MAX_BOUNDARIES = 32 };
 #define GSN_DEFAULT_FRAMES 100            /* output.every = end / this */
 #define GSN_DEFAULT_MAX_PARTICLES 5000000 /* more needs --force */
 
+/* Defaults of the economy keys (docs/economy.md). */
+#define GSN_DEFAULT_REFINE_BOX_DISTANCE 0.0 /* no transition layer */
+#define GSN_DEFAULT_OUTPUT_FIELDS 0x3fu     /* every frame field (schema.h) */
+
+/* Size of the buffer for gsn_case_pre_signature. */
+#define GSN_PRE_SIGNATURE_SIZE (2 * GSN_PATH_SIZE)
+
 enum gsn_integration {
     GSN_INTEGRATION_SCNI = 0, /* stabilized conforming nodal integration */
     GSN_INTEGRATION_DNI,      /* direct nodal integration (comparison only) */
@@ -44,6 +51,24 @@ struct gsn_boundary {
     double velocity[3];  /* m/s, where has_velocity */
     int has_traction[3]; /* set when the entry has a traction */
     double traction[3];  /* dead load per reference area, Pa */
+    int symmetry; /* symmetry plane: the normal component is held (solver) */
+};
+
+/* Local refinement of the particle spacing (particles.refine), passed to
+ * gmsh as size fields (docs/economy.md, "Graded spacing"). */
+enum { GSN_MAX_REFINEMENTS = 16 };
+enum gsn_refine_kind {
+    GSN_REFINE_BOX = 0, /* spacing inside an axis-aligned box */
+    GSN_REFINE_SURFACE  /* spacing on a physical surface */
+};
+struct gsn_refinement {
+    enum gsn_refine_kind kind;
+    int line;                    /* of the entry in the case file */
+    double box[6];               /* x0 y0 z0 x1 y1 z1, m (BOX) */
+    char surface[GSN_NAME_SIZE]; /* physical surface name (SURFACE) */
+    double spacing;              /* m, inside the box / on the surface */
+    double distance; /* m over which the spacing grows to particles.spacing */
+    double width;    /* m from a surface within which spacing holds (SURFACE) */
 };
 
 struct gsn_material {
@@ -83,6 +108,12 @@ struct gsn_case {
                                 smoothly from 0 (0: at once) */
     double damping_local;    /* Cundall's local damping coefficient (0: none) */
     double output_every;     /* s between frames */
+    /* economy (docs/economy.md) */
+    int refinement_count;
+    struct gsn_refinement refinements[GSN_MAX_REFINEMENTS];
+    unsigned output_fields; /* bit f: frame field f (schema.h) is written */
+    char output_mirror[GSN_NAME_SIZE]; /* symmetry surface post mirrors
+                                          across, or "" */
 };
 
 /* Reads and checks a case file. On error returns GSN_ERR_INPUT (or

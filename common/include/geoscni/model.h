@@ -68,6 +68,18 @@ int gsn_model_particle_on_surface(const struct gsn_model *m, int particle,
 /* Index of a surface by name, or -1. */
 int gsn_model_find_surface(const struct gsn_model *m, const char *name);
 
+/* The plane of a surface that is one plane normal to a coordinate axis
+ * (a symmetry plane): its particles' coordinates along axis (0, 1, 2) agree
+ * to 1e-9 of the body's size, at offset (m). GSN_ERR_INPUT, naming the
+ * surface, if the surface has no particles or is not such a plane. */
+int gsn_model_surface_plane(const struct gsn_model *m, int surface, int *axis,
+                            double *offset);
+
+/* Marks, for every boundary entry of c with symmetry: true, the component
+ * normal to its plane (gsn_model_surface_plane) as fixed; a surface that is
+ * not an axis-aligned plane is refused with the case file's line. */
+int gsn_case_resolve_symmetry(struct gsn_case *c, const struct gsn_model *m);
+
 #ifdef __cplusplus
 }
 #endif

@@ -16,22 +16,28 @@ struct gsn_frame {
     int step;
     int particle_count;
     double *field[GSN_FRAME_FIELD_COUNT];
+    /* bit f: field f is written (output.fields) or was read; the others
+     * are left out of the file (their arrays stay allocated) */
+    unsigned present;
 };
 
-/* Allocates the fields of a frame of particle_count particles (zeroed). */
+/* Allocates the fields of a frame of particle_count particles (zeroed),
+ * every field present. */
 int gsn_frame_allocate(struct gsn_frame *frame, int particle_count);
 
 /* Frees the fields and zeroes the struct; accepts a zeroed struct. */
 void gsn_frame_free(struct gsn_frame *frame);
 
-/* Appends frame number index (0, 1, 2, ... in order) and flushes the file. */
+/* Appends frame number index (0, 1, 2, ... in order) with its present
+ * fields and flushes the file. */
 int gsn_results_frame_write(hid_t file, int index,
                             const struct gsn_frame *frame);
 
 /* Number of complete frames in the file. */
 int gsn_results_frame_count(hid_t file, int *count);
 
-/* Reads frame index into a frame allocated for the file's particle count. */
+/* Reads frame index into a frame allocated for the file's particle count;
+ * frame->present says which fields the file holds (the others are zeroed). */
 int gsn_results_frame_read(hid_t file, int index, struct gsn_frame *frame);
 
 #ifdef __cplusplus

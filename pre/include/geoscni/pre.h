@@ -82,6 +82,18 @@ int gsn_pre_domains_box_ex(const double *points, int n, const double lo[3],
                            const double hi[3], int facet_points, int threads,
                            struct gsn_model *m, struct gsn_pre_check *report);
 
+/* Particles of a refinement region of the case (particles.refine[region];
+ * region -1: the body outside every region and its transition) in a model:
+ * count, and the median cell size V_I^(1/3) (m) of the interior particles
+ * (no surface tag: boundary cells are cut) in its core, 0 if none. A box
+ * region holds the particles inside the box grown by its distance, its
+ * core those inside the box; a surface region holds the particles within
+ * its width + distance of the surface's particles, its core those within
+ * its width + a quarter of its distance. */
+int gsn_pre_refinement_stats(const struct gsn_case *c,
+                             const struct gsn_model *m, int region, int *count,
+                             double *cell_size);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,64 @@
+#!/bin/sh
+# Graded-spacing economy (issue 8, point 2): Slope I with uniform particles
+# against the graded case (fine under the footing and along the slope face,
+# coarse far away). Runs pre and solve of both with time.end cut to END
+# seconds (default 15 s: 0.15 m of footing settlement at 0.01 m/s, past the
+# coarse case's peak at about 0.09 m), then prints the particle counts, the
+# time steps, the wall times of pre + solve, the peak footing loads, their
+# difference relative to the uniform case's, and the wall-time ratio
+# graded / uniform.
+# Usage: bench/economy_graded.sh [BUILD_DIR] [END] [UNIFORM_CASE] [GRADED_CASE]
+#        (default build, 15, geometries/slope_I_coarse.yaml,
+#        geometries/slope_I_graded_coarse.yaml; the paper-resolution run:
+#        bench/economy_graded.sh build 100 geometries/slope_I.yaml
+#        geometries/slope_I_graded.yaml)
+set -eu
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-build}
+end=${2:-15}
+uniform=${3:-$root/geometries/slope_I_coarse.yaml}
+graded=${4:-$root/geometries/slope_I_graded_coarse.yaml}
+threads=${THREADS:-2}
+geoscni=$root/$build/bin/geoscni
+[ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
+work=${WORK:-$(mktemp -d /tmp/geoscni_economy_graded.XXXXXX)}
+mkdir -p "$work"
+
+# run NAME CASE: the case cut to END s, pre + solve; prints the wall time.
+run() {
+    sed -e "s|^geometry: *|geometry: $(cd "$(dirname "$2")" && pwd)/|" \
+        -e "s|^\( *end:\).*|\1 $end|" \
+        -e "s|^\( *every:\).*|\1 $(echo "$end" | awk '{print $1 / 50}')|" \
+        "$2" >"$work/$1.yaml"
+    start=$(date +%s.%N)
+    "$geoscni" pre "$work/$1.yaml" -o "$work/$1" >"$work/$1.pre.log"
+    OMP_WAIT_POLICY=passive "$geoscni" solve "$work/$1.yaml" -o "$work/$1" \
+        -j "$threads" >"$work/$1.log" 2>&1
+    stop=$(date +%s.%N)
+    echo "$start $stop" | awk '{printf "%.1f", $2 - $1}'
+}
+
+# peak NAME: the largest |footing_fz| of the history in MN and the
+# settlement where it occurs.
+peak() {
+    awk -F, '
+        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_fz") f = i; if ($i == "footing_uz") u = i } next }
+        { v = $f < 0 ? -$f : $f; if (v > best) { best = v; at = -$u } }
+        END { printf "%.4f %.4f", best / 1e6, at }' "$work/$1/history.csv"
+}
+
+particles() { grep '^solver:' "$work/$1.log" | sed 's/solver: \([0-9]*\) particles.*/\1/'; }
+step() { grep '^time step:' "$work/$1.log" | sed 's/time step: \([0-9.e+-]*\) s.*/\1/'; }
+
+echo "economy_graded: time.end $end s, $threads threads, $(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg), work in $work"
+t_uniform=$(run uniform "$uniform")
+t_graded=$(run graded "$graded")
+set -- $(peak uniform)
+p_uniform=$1 u_uniform=$2
+set -- $(peak graded)
+p_graded=$1 u_graded=$2
+echo "uniform $(basename "$uniform"): $(particles uniform) particles, step $(step uniform) s, pre + solve $t_uniform s, peak footing load $p_uniform MN at $u_uniform m"
+echo "graded  $(basename "$graded"): $(particles graded) particles, step $(step graded) s, pre + solve $t_graded s, peak footing load $p_graded MN at $u_graded m"
+grep '^pre: \(refine\|outside\)' "$work/graded.pre.log" | sed 's/^/  /'
+echo "$p_uniform $p_graded $t_uniform $t_graded" |
+    awk '{printf "peak difference (graded - uniform) / uniform: %+.2f %%\nwall-time ratio graded / uniform: %.3f\n", 100 * ($2 - $1) / $1, $4 / $3}'

@@ -1,0 +1,24 @@
+/* pre's part of the economy keys (docs/economy.md): graded particle spacing
+ * from particles.refine as gmsh size fields, and the checks of symmetry
+ * planes and refinement surfaces against the geometry. */
+#ifndef GEOSCNI_PRE_REFINE_H
+#define GEOSCNI_PRE_REFINE_H
+
+#include "geoscni/case.h"
+#include "geoscni/model.h"
+
+/* After gmsh opened the geometry: every refinement surface is a physical
+ * surface, every symmetry entry's surface a plane normal to x, y or z (by
+ * the bounding boxes of its gmsh entities). Errors name the case's line. */
+int pre_refine_check(const struct gsn_case *c);
+
+/* Sets the size fields of particles.refine (Box; Distance + Threshold;
+ * combined with Min) as gmsh's background mesh, and adds to *estimate the
+ * extra particles the refinements make (a rough bound for the
+ * particle-count guard). Nothing to do without refinements. */
+int pre_refine_fields(const struct gsn_case *c, double *estimate);
+
+/* Prints the particles of each refinement region and of the rest. */
+int pre_refine_report(const struct gsn_case *c, const struct gsn_model *m);
+
+#endif
