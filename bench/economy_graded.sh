@@ -2,8 +2,8 @@
 # Graded-spacing economy (issue 8, point 2): Slope I with uniform particles
 # against the graded case (fine under the footing and along the slope face,
 # coarse far away). Runs pre and solve of both with time.end cut to END
-# seconds (default 15 s: 0.15 m of footing settlement at 0.01 m/s, past the
-# coarse case's peak at about 0.09 m), then prints the particle counts, the
+# seconds (default 3.5 s: 0.15 m of footing settlement at the coarse cases'
+# 0.05 m/s after their 1 s ramp, past the peak at about 0.1 m), then prints the particle counts, the
 # time steps, the wall times of pre + solve, the peak footing loads, their
 # difference relative to the uniform case's, and the wall-time ratio
 # graded / uniform.
@@ -15,7 +15,7 @@
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-build}
-end=${2:-15}
+end=${2:-3.5}
 uniform=${3:-$root/geometries/slope_I_coarse.yaml}
 graded=${4:-$root/geometries/slope_I_graded_coarse.yaml}
 threads=${THREADS:-2}
