@@ -17,8 +17,9 @@ enum { CONSTRAINT_REFRESH = 64 };
  * parallel region costs more than they do (and spin-waiting threads on a
  * loaded machine cost far more). */
 enum { PARALLEL_MIN_ITEMS = 2048 };
-/* Points per block of the one-pass step (point_blocks.h). */
-enum { BLOCK_SIZE = 128 };
+/* Particles per block of the one-pass step (point_blocks.h), with and
+ * without stabilization points; at most CHUNK. */
+enum { BLOCK_PARTICLES = 64, BLOCK_PARTICLES_STABILIZED = 32 };
 /* Points per batch of the material update. */
 enum { CHUNK = 64 };
 /* Doubles of per-thread work per batch: G, strain increment, old stress,
@@ -33,6 +34,8 @@ enum {
     POWER_WINDOW = 10
 };
 #define POWER_TOLERANCE 1e-3
+
+static size_t block_work_size(const struct gsn_point_blocks *b);
 
 static int parallel_worth(int items)
 {
@@ -72,7 +75,6 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
         free(arrays[i]);
     free(e->point_failed);
     free(e->displacement_gradient);
-    free(e->increment);
     free(e->slot_force);
     gsn_point_blocks_destroy(&e->blocks);
     free(e->boundary_point_mask);
@@ -224,7 +226,6 @@ int gsn_explicit_create(const struct gsn_model *m,
         {(void **)&e->new_acceleration, n3, sizeof(double)},
         {(void **)&e->piola, 9 * points, sizeof(double)},
         {(void **)&e->displacement_gradient, 9 * points, sizeof(double)},
-        {(void **)&e->increment, n3, sizeof(double)},
         {(void **)&e->point_energy, points, sizeof(double)},
         {(void **)&e->point_failed, points, sizeof(int)},
     };
@@ -232,9 +233,12 @@ int gsn_explicit_create(const struct gsn_model *m,
         GSN_CALL_GOTO(
             alloc_array(arrays[i].array, arrays[i].count, arrays[i].size), rc,
             fail);
-    GSN_CALL_GOTO(gsn_point_blocks_create(&quadrature->gradient,
-                                          e->particle_count, BLOCK_SIZE,
-                                          e->main_point_count, &e->blocks),
+    GSN_CALL_GOTO(gsn_point_blocks_create(quadrature,
+                                          quadrature->point_count >
+                                                  quadrature->main_point_count
+                                              ? BLOCK_PARTICLES_STABILIZED
+                                              : BLOCK_PARTICLES,
+                                          &e->blocks),
                   rc, fail);
     GSN_CALL_GOTO(
         alloc_array((void **)&e->slot_force,
@@ -243,8 +247,7 @@ int gsn_explicit_create(const struct gsn_model *m,
         rc, fail);
     GSN_CALL_GOTO(
         alloc_array((void **)&e->thread_work,
-                    (size_t)e->thread_count *
-                        (6 * (size_t)e->blocks->max_block_slots + CHUNK_WORK),
+                    (size_t)e->thread_count * block_work_size(e->blocks),
                     sizeof(double)),
         rc, fail);
     GSN_CALL_GOTO(build_boundary_masks(e), rc, fail);
@@ -309,44 +312,57 @@ static double voigt_contract(const double a[6], const double b[6])
            2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
 }
 
-/* dH_p = sum_I du_I (x) g_pI over row p, du gathered into the block's
- * slots (eq. (21) applied to the increment). */
-static void point_increment(const struct gsn_explicit *e, int p,
-                            const double *du, double dH[9])
+/* dH = sum_I u_I (x) g_I over packed row r (eq. (21) applied to the
+ * increment). u is gathered into the block's slots with 4 doubles per slot
+ * (the 4th zero), so every entry is three 4-wide multiply-adds into the
+ * columns of dH; the sums run in entry order, as a scalar loop would. */
+static inline void row_gradient(const struct gsn_point_blocks *b, int r,
+                                const double *restrict u4, double dH[9])
 {
-    const struct gsn_shape_rows *g = &e->quadrature->gradient;
-    const int *slot = e->blocks->entry_slot;
-    for (int a = 0; a < 9; ++a)
-        dH[a] = 0.0;
-    for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
-        const double *u = &du[3 * slot[k]];
-        const double *grad = &g->gradient[3 * k];
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                dH[3 * i + j] += u[i] * grad[j];
+    const int *restrict slot = b->entry_slot;
+    const double *restrict g = b->entry_gradient;
+    double c0[4] = {0.0, 0.0, 0.0, 0.0}, c1[4] = {0.0, 0.0, 0.0, 0.0};
+    double c2[4] = {0.0, 0.0, 0.0, 0.0};
+    for (int k = b->row_start[r]; k < b->row_start[r + 1]; ++k) {
+        const double *u = &u4[4 * slot[k]];
+        const double g0 = g[3 * k], g1 = g[3 * k + 1], g2 = g[3 * k + 2];
+        for (int i = 0; i < 4; ++i) {
+            c0[i] += u[i] * g0;
+            c1[i] += u[i] * g1;
+            c2[i] += u[i] * g2;
+        }
+    }
+    for (int i = 0; i < 3; ++i) {
+        dH[3 * i] = c0[i];
+        dH[3 * i + 1] = c1[i];
+        dH[3 * i + 2] = c2[i];
     }
 }
 
-/* force_slot += P_p g_pI over row p (eq. (29) with P = J sigma F^-T w). */
-static void point_scatter(const struct gsn_explicit *e, int p, double *force)
+/* force_slot += P g_I over packed row r (eq. (29) with P = J sigma F^-T w),
+ * into slots of 4 doubles (the 4th stays zero). */
+static inline void row_scatter(const struct gsn_point_blocks *b, int r,
+                               const double P[9], double *restrict f4)
 {
-    const struct gsn_shape_rows *g = &e->quadrature->gradient;
-    const int *slot = e->blocks->entry_slot;
-    const double *P = &e->piola[9 * p];
-    for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
-        const double *grad = &g->gradient[3 * k];
-        double *f = &force[3 * slot[k]];
-        for (int i = 0; i < 3; ++i)
-            f[i] += P[3 * i] * grad[0] + P[3 * i + 1] * grad[1] +
-                    P[3 * i + 2] * grad[2];
+    const int *restrict slot = b->entry_slot;
+    const double *restrict g = b->entry_gradient;
+    const double p0[4] = {P[0], P[3], P[6], 0.0};
+    const double p1[4] = {P[1], P[4], P[7], 0.0};
+    const double p2[4] = {P[2], P[5], P[8], 0.0};
+    for (int k = b->row_start[r]; k < b->row_start[r + 1]; ++k) {
+        double *f = &f4[4 * slot[k]];
+        const double g0 = g[3 * k], g1 = g[3 * k + 1], g2 = g[3 * k + 2];
+        for (int i = 0; i < 4; ++i)
+            f[i] += p0[i] * g0 + p1[i] * g1 + p2[i] * g2;
     }
 }
 
-/* Main points [p0, p1): F_{n+1} = I + H + dH, the incremental gradient on
- * the mid-step configuration G = dH (I + H + dH/2)^-1, the objective
- * update with the material (Fig. 3), the work sigma : d eps and P. */
-static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
-                      double *work)
+/* Nodal points [p0, p1) with their increments dH (9 each, from p0):
+ * F_{n+1} = I + H + dH, the incremental gradient on the mid-step
+ * configuration G = dH (I + H + dH/2)^-1, the objective update with the
+ * material (Fig. 3), the work sigma : d eps and P. */
+static int main_chunk(struct gsn_explicit *e, int p0, int p1,
+                      const double *dH_block, double *work)
 {
     const double *w = e->quadrature->point_weight;
     double *G = work, *deps = G + 9 * CHUNK, *old = deps + 6 * CHUNK;
@@ -355,8 +371,8 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
     for (int p = p0; p < p1; ++p) {
         int b = p - p0;
         const double *H = &e->displacement_gradient[9 * p];
-        double dH[9], F1[9], Fmid[9], Fmid_inv[9];
-        point_increment(e, p, du, dH);
+        const double *dH = &dH_block[9 * b];
+        double F1[9], Fmid[9], Fmid_inv[9];
         for (int a = 0; a < 9; ++a) {
             double identity = (a % 4 == 0) ? 1.0 : 0.0;
             Hnew[9 * b + a] = H[a] + dH[a];
@@ -400,16 +416,38 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
     return GSN_OK;
 }
 
-/* A stabilization point: linear elastic stress of its row (Puso et al.
- * 2008), which vanishes for every linear displacement field. */
-static void stabilization_point(struct gsn_explicit *e, int p, const double *du)
+/* sigma w as a 3x3 matrix: the P of a stabilization point (small strain on
+ * the reference configuration). */
+static void elastic_piola(const double sigma[6], double w, double P[9])
 {
-    double w = e->quadrature->point_weight[p];
-    double *H = &e->displacement_gradient[9 * p];
-    double dH[9], eps[6], deps[6], sigma[6], mean[6];
-    point_increment(e, p, du, dH);
+    gsn_voigt_to_matrix(sigma, P);
     for (int a = 0; a < 9; ++a)
+        P[a] *= w;
+}
+
+/* Stabilization point s of particle L (block k): linear elastic stress of
+ * its row B_s - B_L (Puso et al. 2008), which vanishes for every linear
+ * displacement field. (B_s - B_L) du = B_s du - dH_L with the increment
+ * dH_L of the nodal point; the force P_s (B_s - B_L) is scattered as
+ * P_s B_s here and -P_s B_L through fold, the nodal point's P. */
+static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
+                                const double *u4, const double dH_L[9],
+                                double fold[9], double *f4)
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    const struct gsn_point_blocks *b = e->blocks;
+    int p = e->main_point_count + b->subcells * L + s;
+    if (q->gradient.offset[p] == q->gradient.offset[p + 1])
+        return; /* an empty sub-cell: weight 0, no entries */
+    int r = gsn_point_blocks_subcell_row(b, k, L, s);
+    double w = q->point_weight[p];
+    double *H = &e->displacement_gradient[9 * p];
+    double dH[9], eps[6], deps[6], sigma[6], mean[6], P[9];
+    row_gradient(b, r, u4, dH);
+    for (int a = 0; a < 9; ++a) {
+        dH[a] -= dH_L[a];
         H[a] += dH[a];
+    }
     gsn_matrix_sym_to_voigt(H, eps);
     gsn_matrix_sym_to_voigt(dH, deps);
     elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
@@ -417,82 +455,128 @@ static void stabilization_point(struct gsn_explicit *e, int p, const double *du)
         mean[a] = 0.5 * (e->stress[6 * p + a] + sigma[a]);
     memcpy(&e->stress[6 * p], sigma, sizeof sigma);
     e->point_energy[p] = voigt_contract(mean, deps) * w;
-    double *P = &e->piola[9 * p];
-    gsn_voigt_to_matrix(sigma, P);
+    elastic_piola(sigma, w, P);
+    row_scatter(b, r, P, f4);
     for (int a = 0; a < 9; ++a)
-        P[a] *= w;
+        fold[a] -= P[a];
 }
 
-/* Per-thread work: the block's increments and forces, and a chunk's. */
+/* Per-thread work of one block: u and forces (4 per slot), the nodal
+ * increments and folded P (9 per particle), and a chunk's material work. */
+static size_t block_work_size(const struct gsn_point_blocks *b)
+{
+    return 8 * (size_t)b->max_block_slots +
+           18 * (size_t)b->max_block_particles + CHUNK_WORK;
+}
+
 static double *block_work(const struct gsn_explicit *e)
 {
-    size_t size = 6 * (size_t)e->blocks->max_block_slots + CHUNK_WORK;
-    return &e->thread_work[(size_t)omp_get_thread_num() * size];
+    return &e->thread_work[(size_t)omp_get_thread_num() *
+                           block_work_size(e->blocks)];
 }
 
-/* Gathers u (n x 3) into the slots of block k. */
+/* Gathers u - u0 (n x 3; u0 may be NULL) into the slots of block k,
+ * 4 doubles per slot. */
 static void block_gather(const struct gsn_explicit *e, int k, const double *u,
-                         double *local)
+                         const double *u0, double *restrict local)
 {
     const struct gsn_point_blocks *b = e->blocks;
-    for (int s = b->block_slot[k]; s < b->block_slot[k + 1]; ++s)
-        memcpy(&local[3 * (s - b->block_slot[k])], &u[3 * b->slot_particle[s]],
-               3 * sizeof(double));
+    for (int s = b->block_slot[k]; s < b->block_slot[k + 1]; ++s) {
+        const size_t I = 3 * (size_t)b->slot_particle[s];
+        double *l = &local[4 * (size_t)(s - b->block_slot[k])];
+        for (int i = 0; i < 3; ++i)
+            l[i] = u0 ? u[I + i] - u0[I + i] : u[I + i];
+        l[3] = 0.0;
+    }
 }
 
-/* The step's pass over block k: kinematics, stress and forces of its points
- * from the increments e->increment, reading each gradient row once. */
+/* Copies the block's forces (4 per slot) to its slots of e->slot_force. */
+static void block_store(struct gsn_explicit *e, int k, const double *f4)
+{
+    const struct gsn_point_blocks *b = e->blocks;
+    double *out = &e->slot_force[3 * (size_t)b->block_slot[k]];
+    int slots = b->block_slot[k + 1] - b->block_slot[k];
+    for (int s = 0; s < slots; ++s)
+        for (int i = 0; i < 3; ++i)
+            out[3 * s + i] = f4[4 * s + i];
+}
+
+/* The step's pass over block k: kinematics, stress and forces of its
+ * points from the increments d - d_n, reading its rows once. */
 static int block_step(struct gsn_explicit *e, int k)
 {
     const struct gsn_point_blocks *b = e->blocks;
-    int slots = b->block_slot[k + 1] - b->block_slot[k];
-    double *du = block_work(e), *force = du + 3 * (size_t)slots;
-    double *work = du + 6 * (size_t)b->max_block_slots;
-    block_gather(e, k, e->increment, du);
-    memset(force, 0, sizeof(double) * 3 * (size_t)slots);
-    int rc = GSN_OK;
-    for (int p0 = b->block_point[k]; p0 < b->block_point[k + 1]; p0 += CHUNK) {
-        int p1 = p0 + CHUNK < b->block_point[k + 1] ? p0 + CHUNK
-                                                    : b->block_point[k + 1];
-        if (p0 < e->main_point_count) {
-            if (main_chunk(e, p0, p1, du, work) != GSN_OK) {
-                rc = GSN_ERR_NUMERICAL;
-                continue;
-            }
-        } else {
-            for (int p = p0; p < p1; ++p)
-                stabilization_point(e, p, du);
-        }
-        for (int p = p0; p < p1; ++p)
-            point_scatter(e, p, force);
-    }
-    memcpy(&e->slot_force[3 * (size_t)b->block_slot[k]], force,
-           sizeof(double) * 3 * (size_t)slots);
-    return rc;
+    const int S = b->subcells;
+    const int p0 = b->block_particle[k], p1 = b->block_particle[k + 1];
+    const int slots = b->block_slot[k + 1] - b->block_slot[k];
+    double *u4 = block_work(e), *f4 = u4 + 4 * (size_t)b->max_block_slots;
+    double *dH = f4 + 4 * (size_t)b->max_block_slots;
+    double *fold = dH + 9 * (size_t)b->max_block_particles;
+    double *work = fold + 9 * (size_t)b->max_block_particles;
+    block_gather(e, k, e->displacement, e->previous_displacement, u4);
+    memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
+    memset(&e->point_failed[p0], 0, sizeof(int) * (size_t)(p1 - p0));
+    for (int L = p0; L < p1; ++L)
+        row_gradient(b, gsn_point_blocks_main_row(b, k, L), u4,
+                     &dH[9 * (L - p0)]);
+    if (main_chunk(e, p0, p1, dH, work) != GSN_OK)
+        return GSN_ERR_NUMERICAL;
+    memcpy(fold, &e->piola[9 * (size_t)p0],
+           sizeof(double) * 9 * (size_t)(p1 - p0));
+    for (int L = p0; L < p1; ++L)
+        for (int s = 0; s < S; ++s)
+            stabilization_point(e, k, L, s, u4, &dH[9 * (L - p0)],
+                                &fold[9 * (L - p0)], f4);
+    for (int L = p0; L < p1; ++L)
+        row_scatter(b, gsn_point_blocks_main_row(b, k, L), &fold[9 * (L - p0)],
+                    f4);
+    block_store(e, k, f4);
+    return GSN_OK;
 }
 
-/* The linear elastic pass over block k for y = K x (power iteration). */
+/* The linear elastic pass over block k for y = K x (power iteration), with
+ * the stabilization split as in block_step. */
 static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
 {
+    const struct gsn_quadrature *q = e->quadrature;
     const struct gsn_point_blocks *b = e->blocks;
-    const double *w = e->quadrature->point_weight;
-    int slots = b->block_slot[k + 1] - b->block_slot[k];
-    double *u = block_work(e), *force = u + 3 * (size_t)slots;
-    block_gather(e, k, x, u);
-    memset(force, 0, sizeof(double) * 3 * (size_t)slots);
-    for (int p = b->block_point[k]; p < b->block_point[k + 1]; ++p) {
-        double H[9], eps[6], sigma[6];
-        point_increment(e, p, u, H);
-        gsn_matrix_sym_to_voigt(H, eps);
+    const double *w = q->point_weight;
+    const int S = b->subcells;
+    const int p0 = b->block_particle[k], p1 = b->block_particle[k + 1];
+    const int slots = b->block_slot[k + 1] - b->block_slot[k];
+    double *u4 = block_work(e), *f4 = u4 + 4 * (size_t)b->max_block_slots;
+    double *H = f4 + 4 * (size_t)b->max_block_slots;
+    double *fold = H + 9 * (size_t)b->max_block_particles;
+    block_gather(e, k, x, NULL, u4);
+    memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
+    for (int L = p0; L < p1; ++L) {
+        double eps[6], sigma[6];
+        double *HL = &H[9 * (L - p0)];
+        row_gradient(b, gsn_point_blocks_main_row(b, k, L), u4, HL);
+        gsn_matrix_sym_to_voigt(HL, eps);
         elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
-        double *P = &e->piola[9 * p];
-        gsn_voigt_to_matrix(sigma, P);
-        for (int a = 0; a < 9; ++a)
-            P[a] *= w[p];
-        point_scatter(e, p, force);
+        elastic_piola(sigma, w[L], &fold[9 * (L - p0)]);
+        for (int s = 0; s < S; ++s) {
+            int p = e->main_point_count + S * L + s;
+            if (q->gradient.offset[p] == q->gradient.offset[p + 1])
+                continue;
+            int r = gsn_point_blocks_subcell_row(b, k, L, s);
+            double Hs[9], P[9];
+            row_gradient(b, r, u4, Hs);
+            for (int a = 0; a < 9; ++a)
+                Hs[a] -= HL[a];
+            gsn_matrix_sym_to_voigt(Hs, eps);
+            elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
+            elastic_piola(sigma, w[p], P);
+            row_scatter(b, r, P, f4);
+            for (int a = 0; a < 9; ++a)
+                fold[9 * (L - p0) + a] -= P[a];
+        }
     }
-    memcpy(&e->slot_force[3 * (size_t)b->block_slot[k]], force,
-           sizeof(double) * 3 * (size_t)slots);
+    for (int L = p0; L < p1; ++L)
+        row_scatter(b, gsn_point_blocks_main_row(b, k, L), &fold[9 * (L - p0)],
+                    f4);
+    block_store(e, k, f4);
 }
 
 /* The lowest failed point, as a message naming step, time and particle. */
@@ -549,11 +633,7 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
 
 int gsn_explicit_update_stress(struct gsn_explicit *e)
 {
-    int n3 = 3 * e->particle_count;
-    for (int i = 0; i < n3; ++i)
-        e->increment[i] = e->displacement[i] - e->previous_displacement[i];
     int failed = 0;
-    memset(e->point_failed, 0, sizeof(int) * (size_t)e->point_count);
     int parallel = parallel_worth(e->point_count);
     /* clang-format off */
 #pragma omp parallel for schedule(dynamic, 2) reduction(|:failed) if (parallel)

@@ -77,7 +77,6 @@ struct gsn_explicit {
     struct gsn_point_blocks *blocks; /* the rows cut for one pass a step */
     double *slot_force;              /* slots x 3: forces of each block */
     double *displacement_gradient;   /* points x 9: H = F - I at t_n */
-    double *increment;               /* n x 3: d_{n+1} - d_n */
     int skip_boundary_term;          /* 1: leave out the boundary term (negative
                                         control of the patch test only) */
     int *boundary_point_mask;        /* constrained components at each boundary
