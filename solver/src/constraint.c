@@ -9,6 +9,9 @@
 /* Lambda_c with a condition estimate worse than this cannot be trusted to
  * impose the boundary values to 1e-8 relative. */
 #define CONSTRAINT_RCOND_LIMIT 1e-12
+/* Constrained particle components below which the three solves run on one
+ * thread (a parallel region costs more than small solves). */
+enum { CONSTRAINT_PARALLEL_MIN = 2048 };
 
 struct component_constraint {
     int count;        /* |B_c| */
@@ -211,37 +214,55 @@ done:
     return rc;
 }
 
+/* Component c of gsn_constraints_apply; 0 when KLU fails. */
+static int component_apply(struct gsn_constraints *constraints, int c,
+                           const struct gsn_shape_rows *values,
+                           enum gsn_constraint_field kind, double time,
+                           double *field)
+{
+    struct component_constraint *cc = &constraints->component[c];
+    const int *slot = constraints->slot[c];
+    for (int s = 0; s < cc->count; ++s) {
+        int p = cc->particle[s];
+        double target = kind == GSN_FIELD_DISPLACEMENT ? cc->velocity[s] * time
+                        : kind == GSN_FIELD_VELOCITY   ? cc->velocity[s]
+                                                       : 0.0;
+        for (int e = values->offset[p]; e < values->offset[p + 1]; ++e) {
+            int i = values->index[e];
+            if (slot[i] < 0)
+                target -= values->value[e] * field[3 * i + c];
+        }
+        cc->rhs[s] = target;
+    }
+    int ok = klu_tsolve(cc->symbolic, cc->numeric, cc->count, 1, cc->rhs,
+                        &cc->common);
+    if (!ok)
+        return 0;
+    for (int s = 0; s < cc->count; ++s)
+        field[3 * cc->particle[s] + c] = cc->rhs[s];
+    return 1;
+}
+
 int gsn_constraints_apply(struct gsn_constraints *constraints,
                           const struct gsn_shape_rows *values,
                           enum gsn_constraint_field kind, double time,
                           double *field)
 {
-    for (int c = 0; c < 3; ++c) {
-        struct component_constraint *cc = &constraints->component[c];
-        if (cc->count == 0)
-            continue;
-        const int *slot = constraints->slot[c];
-        for (int s = 0; s < cc->count; ++s) {
-            int p = cc->particle[s];
-            double target = kind == GSN_FIELD_DISPLACEMENT
-                                ? cc->velocity[s] * time
-                            : kind == GSN_FIELD_VELOCITY ? cc->velocity[s]
-                                                         : 0.0;
-            for (int e = values->offset[p]; e < values->offset[p + 1]; ++e) {
-                int i = values->index[e];
-                if (slot[i] < 0)
-                    target -= values->value[e] * field[3 * i + c];
-            }
-            cc->rhs[s] = target;
-        }
-        int ok = klu_tsolve(cc->symbolic, cc->numeric, cc->count, 1, cc->rhs,
-                            &cc->common);
-        GSN_CHECK(ok, GSN_ERR_NUMERICAL,
+    /* The components read and write only their own column of field, and
+     * each has its own KLU workspace: they run in parallel, the same bits
+     * on any thread count. */
+    int ok[3] = {1, 1, 1}, work = 0;
+    for (int c = 0; c < 3; ++c)
+        work += constraints->component[c].count;
+#pragma omp parallel for schedule(dynamic,                                     \
+                                  1) if (work >= CONSTRAINT_PARALLEL_MIN)
+    for (int c = 0; c < 3; ++c)
+        if (constraints->component[c].count > 0)
+            ok[c] = component_apply(constraints, c, values, kind, time, field);
+    for (int c = 0; c < 3; ++c)
+        GSN_CHECK(ok[c], GSN_ERR_NUMERICAL,
                   "the %c boundary solve failed (KLU status %d)",
-                  component_names[c], cc->common.status);
-        for (int s = 0; s < cc->count; ++s)
-            field[3 * cc->particle[s] + c] = cc->rhs[s];
-    }
+                  component_names[c], constraints->component[c].common.status);
     return GSN_OK;
 }
 

@@ -78,6 +78,10 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     free(e->slot_force);
     gsn_point_blocks_destroy(&e->blocks);
     free(e->boundary_point_mask);
+    free(e->boundary_traction);
+    free(e->boundary_entry_offset);
+    free(e->boundary_entry);
+    free(e->boundary_entry_point);
     free(e);
     *handle = NULL;
 }
@@ -86,12 +90,42 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
 static int build_boundary_masks(struct gsn_explicit *e)
 {
     const struct gsn_quadrature *q = e->quadrature;
-    GSN_CALL(alloc_array((void **)&e->boundary_point_mask,
-                         (size_t)q->boundary_point_count, sizeof(int)));
-    for (int b = 0; b < q->boundary_point_count && e->constraints; ++b)
+    const struct gsn_shape_rows *values = &q->boundary_values;
+    int n = e->particle_count, nb = q->boundary_point_count;
+    GSN_CALL(
+        alloc_array((void **)&e->boundary_point_mask, (size_t)nb, sizeof(int)));
+    GSN_CALL(alloc_array((void **)&e->boundary_traction, 3 * (size_t)nb,
+                         sizeof(double)));
+    GSN_CALL(alloc_array((void **)&e->boundary_entry_offset, (size_t)n + 1,
+                         sizeof(int)));
+    for (int b = 0; b < nb && e->constraints; ++b)
         e->boundary_point_mask[b] = gsn_constraints_surface_mask(
             e->constraints,
             e->model->facet_surface[q->boundary_point_facet[b]]);
+    /* The entries of constrained boundary points by particle, in boundary
+     * point order: boundary_term gathers them in parallel and adds in the
+     * order of the serial scatter. */
+    for (int b = 0; b < nb; ++b)
+        for (int k = values->offset[b];
+             e->boundary_point_mask[b] && k < values->offset[b + 1]; ++k)
+            e->boundary_entry_offset[values->index[k] + 1]++;
+    for (int i = 0; i < n; ++i)
+        e->boundary_entry_offset[i + 1] += e->boundary_entry_offset[i];
+    size_t entries = (size_t)e->boundary_entry_offset[n];
+    GSN_CALL(alloc_array((void **)&e->boundary_entry, entries, sizeof(int)));
+    GSN_CALL(
+        alloc_array((void **)&e->boundary_entry_point, entries, sizeof(int)));
+    int *fill = NULL;
+    GSN_CALL(alloc_array((void **)&fill, (size_t)n + 1, sizeof(int)));
+    memcpy(fill, e->boundary_entry_offset, sizeof(int) * (size_t)n);
+    for (int b = 0; b < nb; ++b)
+        for (int k = values->offset[b];
+             e->boundary_point_mask[b] && k < values->offset[b + 1]; ++k) {
+            int at = fill[values->index[k]]++;
+            e->boundary_entry[at] = k;
+            e->boundary_entry_point[at] = b;
+        }
+    free(fill);
     return GSN_OK;
 }
 
@@ -118,19 +152,30 @@ static void boundary_term(const struct gsn_explicit *e, double *force)
 {
     const struct gsn_quadrature *q = e->quadrature;
     const struct gsn_shape_rows *values = &q->boundary_values;
-    memset(force, 0, sizeof(double) * 3 * (size_t)e->particle_count);
-    for (int b = 0; b < q->boundary_point_count; ++b) {
-        int mask = e->boundary_point_mask[b];
-        if (!mask)
-            continue;
-        double t[3];
-        boundary_traction(e, b, t);
-        double w = q->boundary_point_weight[b];
-        for (int k = values->offset[b]; k < values->offset[b + 1]; ++k)
-            for (int i = 0; i < 3; ++i)
-                if (mask & (1 << i))
-                    force[3 * values->index[k] + i] +=
-                        values->value[k] * t[i] * w;
+    double *t = e->boundary_traction;
+    int parallel = parallel_worth(q->boundary_point_count);
+#pragma omp parallel if (parallel)
+    {
+#pragma omp for
+        for (int b = 0; b < q->boundary_point_count; ++b)
+            if (e->boundary_point_mask[b])
+                boundary_traction(e, b, &t[3 * b]);
+                /* force_I = sum_q Psi_I(x_q) t w_q, gathered per particle in
+                 * boundary point order (the order of a serial scatter). */
+#pragma omp for
+        for (int I = 0; I < e->particle_count; ++I) {
+            double f[3] = {0.0, 0.0, 0.0};
+            for (int j = e->boundary_entry_offset[I];
+                 j < e->boundary_entry_offset[I + 1]; ++j) {
+                int b = e->boundary_entry_point[j], k = e->boundary_entry[j];
+                int mask = e->boundary_point_mask[b];
+                double w = q->boundary_point_weight[b];
+                for (int i = 0; i < 3; ++i)
+                    if (mask & (1 << i))
+                        f[i] += values->value[k] * t[3 * b + i] * w;
+            }
+            memcpy(&force[3 * (size_t)I], f, sizeof f);
+        }
     }
 }
 

@@ -81,6 +81,11 @@ struct gsn_explicit {
                                         control of the patch test only) */
     int *boundary_point_mask;        /* constrained components at each boundary
                                         quadrature point (bit k: component k) */
+    double *boundary_traction; /* boundary points x 3: t of the step, Pa */
+    /* The entries of boundary_values at constrained boundary points, by
+     * particle (offset particles + 1), each with its boundary point, in
+     * boundary point order. */
+    int *boundary_entry_offset, *boundary_entry, *boundary_entry_point;
 };
 
 /* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped
