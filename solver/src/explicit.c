@@ -371,19 +371,36 @@ typedef double gsn_v4 __attribute__((vector_size(32), aligned(8), may_alias));
 /* dH = sum_I u_I (x) g_I over packed row r (eq. (21) applied to the
  * increment). u is gathered into the block's slots with 4 doubles per slot
  * (the 4th zero), so every entry is three 4-wide multiply-adds into the
- * columns of dH; the sums run in entry order, as a scalar loop would. */
+ * columns of dH. Two sets of sums, even and odd entries, added at the end,
+ * so that consecutive entries do not wait for each other's additions. */
 static inline void row_gradient(const struct gsn_point_blocks *b, int r,
                                 const double *restrict u4, double dH[9])
 {
     const int *restrict slot = b->entry_slot;
     const double *restrict g = b->entry_gradient;
-    gsn_v4 c0 = {0.0, 0.0, 0.0, 0.0}, c1 = c0, c2 = c0;
-    for (int k = b->row_start[r]; k < b->row_start[r + 1]; ++k) {
+    const gsn_v4 zero = {0.0, 0.0, 0.0, 0.0};
+    gsn_v4 c0 = zero, c1 = zero, c2 = zero, d0 = zero, d1 = zero, d2 = zero;
+    int k = b->row_start[r];
+    const int end = b->row_start[r + 1];
+    for (; k + 1 < end; k += 2) {
+        const gsn_v4 u = *(const gsn_v4 *)&u4[4 * slot[k]];
+        const gsn_v4 v = *(const gsn_v4 *)&u4[4 * slot[k + 1]];
+        c0 += u * g[3 * k];
+        c1 += u * g[3 * k + 1];
+        c2 += u * g[3 * k + 2];
+        d0 += v * g[3 * k + 3];
+        d1 += v * g[3 * k + 4];
+        d2 += v * g[3 * k + 5];
+    }
+    if (k < end) {
         const gsn_v4 u = *(const gsn_v4 *)&u4[4 * slot[k]];
         c0 += u * g[3 * k];
         c1 += u * g[3 * k + 1];
         c2 += u * g[3 * k + 2];
     }
+    c0 += d0;
+    c1 += d1;
+    c2 += d2;
     for (int i = 0; i < 3; ++i) {
         dH[3 * i] = c0[i];
         dH[3 * i + 1] = c1[i];
