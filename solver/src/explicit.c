@@ -376,7 +376,7 @@ typedef double gsn_v4 __attribute__((vector_size(32), aligned(8), may_alias));
 static inline void row_gradient(const struct gsn_point_blocks *b, int r,
                                 const double *restrict u4, double dH[9])
 {
-    const int *restrict slot = b->entry_slot;
+    const uint16_t *restrict slot = b->entry_slot;
     const double *restrict g = b->entry_gradient;
     const gsn_v4 zero = {0.0, 0.0, 0.0, 0.0};
     gsn_v4 c0 = zero, c1 = zero, c2 = zero, d0 = zero, d1 = zero, d2 = zero;
@@ -413,7 +413,7 @@ static inline void row_gradient(const struct gsn_point_blocks *b, int r,
 static inline void row_scatter(const struct gsn_point_blocks *b, int r,
                                const double P[9], double *restrict f4)
 {
-    const int *restrict slot = b->entry_slot;
+    const uint16_t *restrict slot = b->entry_slot;
     const double *restrict g = b->entry_gradient;
     const gsn_v4 p0 = {P[0], P[3], P[6], 0.0};
     const gsn_v4 p1 = {P[1], P[4], P[7], 0.0};

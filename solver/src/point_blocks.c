@@ -30,7 +30,7 @@ size_t gsn_point_blocks_bytes(const struct gsn_point_blocks *b)
         (size_t)b->block_particle[b->block_count] * (1 + (size_t)b->subcells);
     size_t entries = (size_t)b->row_start[rows];
     size_t slots = (size_t)b->block_slot[b->block_count];
-    return entries * (sizeof(int) + 3 * sizeof(double)) +
+    return entries * (sizeof(uint16_t) + 3 * sizeof(double)) +
            (rows + 1) * sizeof(int) + 2 * slots * sizeof(int) +
            ((size_t)b->block_particle[b->block_count] + 1) * sizeof(int);
 }
@@ -107,10 +107,10 @@ static int cut_blocks(struct gsn_point_blocks *b,
     return GSN_OK;
 }
 
-/* Copies the rows of block k into the stream, with particle indices in
- * entry_slot for now. */
+/* Copies the rows of block k into the stream, their particle indices into
+ * particle (one per entry). */
 static void fill_block(struct gsn_point_blocks *b,
-                       const struct gsn_quadrature *q, int k)
+                       const struct gsn_quadrature *q, int k, int *particle)
 {
     const struct gsn_shape_rows *g = &q->gradient;
     int n = q->particle_count, S = b->subcells;
@@ -119,8 +119,7 @@ static void fill_block(struct gsn_point_blocks *b,
         int r = gsn_point_blocks_main_row(b, k, L);
         size_t at = (size_t)b->row_start[r],
                count = (size_t)(g->offset[L + 1] - g->offset[L]);
-        memcpy(&b->entry_slot[at], &g->index[g->offset[L]],
-               count * sizeof(int));
+        memcpy(&particle[at], &g->index[g->offset[L]], count * sizeof(int));
         memcpy(&b->entry_gradient[3 * at],
                &g->gradient[3 * (size_t)g->offset[L]],
                3 * count * sizeof(double));
@@ -129,14 +128,16 @@ static void fill_block(struct gsn_point_blocks *b,
         for (int s = 0; s < S; ++s) {
             size_t at =
                 (size_t)b->row_start[gsn_point_blocks_subcell_row(b, k, L, s)];
-            subcell_row(g, n + S * L + s, L, &b->entry_slot[at],
+            subcell_row(g, n + S * L + s, L, &particle[at],
                         &b->entry_gradient[3 * at]);
         }
 }
 
 /* Slots of every block: the distinct particles of its rows, ascending; the
- * entries get their slot. */
-static int build_slots(struct gsn_point_blocks *b, int particle_count)
+ * entries get their slot (GSN_ERR_INPUT if a block has more slots than
+ * entry_slot can hold). */
+static int build_slots(struct gsn_point_blocks *b, const int *particle,
+                       int particle_count)
 {
     int rows = b->block_particle[b->block_count] * (1 + b->subcells);
     size_t entries = (size_t)b->row_start[rows];
@@ -155,20 +156,22 @@ static int build_slots(struct gsn_point_blocks *b, int particle_count)
         int r1 = b->block_particle[k + 1] * (1 + b->subcells);
         int e0 = b->row_start[r0], e1 = b->row_start[r1];
         for (int e = e0; e < e1; ++e) {
-            int particle = b->entry_slot[e];
-            if (mark[particle] != k) {
-                mark[particle] = k;
-                b->slot_particle[slots++] = particle;
+            if (mark[particle[e]] != k) {
+                mark[particle[e]] = k;
+                b->slot_particle[slots++] = particle[e];
             }
         }
         /* Ascending particles within the block, for a predictable gather. */
         int count = slots - first;
+        GSN_CHECK_GOTO(count <= GSN_POINT_BLOCKS_MAX_SLOTS, rc, GSN_ERR_INPUT,
+                       done, "block %d touches %d particles, more than %d", k,
+                       count, GSN_POINT_BLOCKS_MAX_SLOTS);
         qsort(&b->slot_particle[first], (size_t)count, sizeof(int),
               compare_int);
         for (int s = first; s < slots; ++s)
             slot_of[b->slot_particle[s]] = s - first;
         for (int e = e0; e < e1; ++e)
-            b->entry_slot[e] = slot_of[b->entry_slot[e]];
+            b->entry_slot[e] = (uint16_t)slot_of[particle[e]];
         b->block_slot[k + 1] = slots;
         if (count > b->max_block_slots)
             b->max_block_slots = count;
@@ -200,6 +203,32 @@ static int build_particle_slots(struct gsn_point_blocks *b, int particle_count)
     return GSN_OK;
 }
 
+/* The blocks of at most block_particles particles. */
+static int blocks_build(const struct gsn_quadrature *q, int block_particles,
+                        struct gsn_point_blocks *b)
+{
+    int n = q->particle_count;
+    b->subcells = n > 0 ? (q->point_count - n) / n : 0;
+    GSN_CALL(cut_blocks(b, q, block_particles));
+    size_t entries =
+        (size_t)b->row_start[(size_t)n * (1 + (size_t)b->subcells)];
+    int *particle = malloc(sizeof(int) * (entries ? entries : 1));
+    b->entry_slot = malloc(sizeof(uint16_t) * (entries ? entries : 1));
+    b->entry_gradient = malloc(3 * sizeof(double) * (entries ? entries : 1));
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(particle && b->entry_slot && b->entry_gradient, rc,
+                   GSN_ERR_MEMORY, done,
+                   "cannot allocate %zu packed gradient entries", entries);
+#pragma omp parallel for schedule(dynamic, 16)
+    for (int k = 0; k < b->block_count; ++k)
+        fill_block(b, q, k, particle);
+    GSN_CALL_GOTO(build_slots(b, particle, n), rc, done);
+    GSN_CALL_GOTO(build_particle_slots(b, n), rc, done);
+done:
+    free(particle);
+    return rc;
+}
+
 int gsn_point_blocks_create(const struct gsn_quadrature *q, int block_particles,
                             struct gsn_point_blocks **out)
 {
@@ -213,27 +242,22 @@ int gsn_point_blocks_create(const struct gsn_quadrature *q, int block_particles,
               "%d points, %d nodal points, %d particles: not nodal points "
               "with the same number of stabilization points per particle",
               q->point_count, q->main_point_count, n);
-    struct gsn_point_blocks *b = calloc(1, sizeof *b);
-    GSN_CHECK(b, GSN_ERR_MEMORY, "out of memory");
-    b->subcells = n > 0 ? (q->point_count - n) / n : 0;
-    int rc = GSN_OK;
-    GSN_CALL_GOTO(cut_blocks(b, q, block_particles), rc, fail);
-    size_t entries =
-        (size_t)b->row_start[(size_t)n * (1 + (size_t)b->subcells)];
-    b->entry_slot = malloc(sizeof(int) * (entries ? entries : 1));
-    b->entry_gradient = malloc(3 * sizeof(double) * (entries ? entries : 1));
-    GSN_CHECK_GOTO(b->entry_slot && b->entry_gradient, rc, GSN_ERR_MEMORY, fail,
-                   "cannot allocate %zu packed gradient entries", entries);
-#pragma omp parallel for schedule(dynamic, 16)
-    for (int k = 0; k < b->block_count; ++k)
-        fill_block(b, q, k);
-    GSN_CALL_GOTO(build_slots(b, n), rc, fail);
-    GSN_CALL_GOTO(build_particle_slots(b, n), rc, fail);
-    *out = b;
-    return GSN_OK;
-fail:
-    gsn_point_blocks_destroy(&b);
-    return rc;
+    /* Halve the blocks until every block fits the 16-bit slots (a block of
+     * one particle always does: 7 rows of at most GSN_RK_MAX_NEIGHBOURS). */
+    for (;;) {
+        struct gsn_point_blocks *b = calloc(1, sizeof *b);
+        GSN_CHECK(b, GSN_ERR_MEMORY, "out of memory");
+        int rc = blocks_build(q, block_particles, b);
+        if (rc == GSN_OK) {
+            *out = b;
+            return GSN_OK;
+        }
+        gsn_point_blocks_destroy(&b);
+        if (rc != GSN_ERR_INPUT || block_particles == 1)
+            GSN_CALL(rc);
+        gsn_error_clear();
+        block_particles /= 2;
+    }
 }
 
 void gsn_point_blocks_reduce(const struct gsn_point_blocks *blocks,

@@ -23,6 +23,12 @@
 
 #include "geoscni/kernels.h"
 
+#include <stdint.h>
+
+/* Slots of one block at most: entry_slot is 16 bits (2 bytes an entry
+ * instead of 4, of the 26 the stream reads per entry). */
+#define GSN_POINT_BLOCKS_MAX_SLOTS 65536
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -37,7 +43,7 @@ struct gsn_point_blocks {
      * then their stabilization rows (S per particle, in sub-cell order);
      * row r has entries row_start[r] .. row_start[r+1]-1. */
     int *row_start;            /* particles x (1 + subcells) + 1 */
-    int *entry_slot;           /* the slot of each entry, within its block */
+    uint16_t *entry_slot;      /* the slot of each entry, within its block */
     double *entry_gradient;    /* 3 per entry: dPsi_I/dX_j, 1/m */
     int *particle_slot_offset; /* particles + 1 */
     int *particle_slot;        /* the slots of each particle, ascending */
