@@ -703,18 +703,25 @@ int gsn_explicit_update_stress(struct gsn_explicit *e)
 {
     int failed = 0;
     int parallel = parallel_worth(e->point_count);
-    /* clang-format off */
-#pragma omp parallel for schedule(dynamic, 2) reduction(|:failed) if (parallel)
-    /* clang-format on */
-    for (int k = 0; k < e->blocks->block_count; ++k)
-        failed |= block_step(e, k) != GSN_OK;
+    /* One parallel region for the blocks and the reduction (a region costs a
+     * wake-up of the threads; the reduction needs the barrier anyway). */
+#pragma omp parallel if (parallel)
+    {
+        /* clang-format off */
+#pragma omp for schedule(dynamic, 2) reduction(|:failed)
+        /* clang-format on */
+        for (int k = 0; k < e->blocks->block_count; ++k)
+            failed |= block_step(e, k) != GSN_OK;
+#pragma omp for
+        for (int i = 0; i < e->particle_count; ++i)
+            gsn_point_blocks_reduce_one(e->blocks, i, e->slot_force,
+                                        &e->f_int[3 * (size_t)i]);
+    }
     if (failed) {
         GSN_CALL(report_failure(e, "det F <= 0 or the material update failed"));
         GSN_CHECK(0, GSN_ERR_NUMERICAL, "step %ld: the stress update failed",
                   e->step + 1);
     }
-    gsn_point_blocks_reduce(e->blocks, e->particle_count, e->slot_force,
-                            e->f_int, parallel_worth(e->particle_count));
     return GSN_OK;
 }
 

@@ -265,15 +265,7 @@ void gsn_point_blocks_reduce(const struct gsn_point_blocks *blocks,
                              double *force, int parallel)
 {
 #pragma omp parallel for if (parallel)
-    for (int i = 0; i < particle_count; ++i) {
-        double f[3] = {0.0, 0.0, 0.0};
-        for (int k = blocks->particle_slot_offset[i];
-             k < blocks->particle_slot_offset[i + 1]; ++k) {
-            const double *s = &slot_force[3 * blocks->particle_slot[k]];
-            f[0] += s[0];
-            f[1] += s[1];
-            f[2] += s[2];
-        }
-        memcpy(&force[3 * i], f, sizeof f);
-    }
+    for (int i = 0; i < particle_count; ++i)
+        gsn_point_blocks_reduce_one(blocks, i, slot_force,
+                                    &force[3 * (size_t)i]);
 }

@@ -79,6 +79,25 @@ void gsn_point_blocks_destroy(struct gsn_point_blocks **blocks);
 /* Bytes of the packed rows and slot tables. */
 size_t gsn_point_blocks_bytes(const struct gsn_point_blocks *blocks);
 
+/* force_i (3) = sum over the slots of particle i of slot_force (slots x 3),
+ * in slot order. */
+static inline void gsn_point_blocks_reduce_one(const struct gsn_point_blocks *b,
+                                               int i, const double *slot_force,
+                                               double force[3])
+{
+    double f[3] = {0.0, 0.0, 0.0};
+    for (int k = b->particle_slot_offset[i]; k < b->particle_slot_offset[i + 1];
+         ++k) {
+        const double *s = &slot_force[3 * (size_t)b->particle_slot[k]];
+        f[0] += s[0];
+        f[1] += s[1];
+        f[2] += s[2];
+    }
+    force[0] = f[0];
+    force[1] = f[1];
+    force[2] = f[2];
+}
+
 /* force_I = sum over the slots of I of slot_force (slots x 3), in slot
  * order. OpenMP over particles when worth it. */
 void gsn_point_blocks_reduce(const struct gsn_point_blocks *blocks,
