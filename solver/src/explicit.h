@@ -11,7 +11,9 @@
  *     configuration; stress by Hughes-Winget + material (Fig. 3)
  *     P_p = det F sigma F^-T w_p  (so that B_I^T sigma det F V_p of eq. (29)
  *     is P_p grad_X Psi_I(X_p), with the chain rule of eq. (25)),
- *     scattered as P_p grad_X Psi_I into the block's slots
+ *     scattered as P_p grad_X Psi_I into the block's slots (a
+ *     stabilization point's row B_s - B_L as B_s, with -P_s B_L folded
+ *     into its particle's nodal point: point_blocks.h)
  *   the slots of every particle summed in block order (the same bits on
  *   any number of threads):
  *     f_int_I = sum_p P_p grad_X Psi_I(X_p)                   eq. (29)
@@ -69,7 +71,8 @@ struct gsn_explicit {
 
     /* Work arrays, owned. */
     double *previous_displacement, *previous_external, *new_acceleration;
-    double *piola;        /* points x 9: P_p w_p */
+    double *piola;        /* points x 9: P_p w_p of the nodal points (the pass
+                             keeps the stabilization points' P in registers) */
     double *point_energy; /* points: internal energy increment, J */
     int *point_failed;    /* points: 1 where pass 1 failed */
     double *thread_work;
