@@ -80,7 +80,7 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     free(e->boundary_point_mask);
     free(e->boundary_traction);
     free(e->boundary_entry_offset);
-    free(e->boundary_entry);
+    free(e->boundary_entry_value);
     free(e->boundary_entry_point);
     free(e);
     *handle = NULL;
@@ -112,7 +112,8 @@ static int build_boundary_masks(struct gsn_explicit *e)
     for (int i = 0; i < n; ++i)
         e->boundary_entry_offset[i + 1] += e->boundary_entry_offset[i];
     size_t entries = (size_t)e->boundary_entry_offset[n];
-    GSN_CALL(alloc_array((void **)&e->boundary_entry, entries, sizeof(int)));
+    GSN_CALL(alloc_array((void **)&e->boundary_entry_value, entries,
+                         sizeof(double)));
     GSN_CALL(
         alloc_array((void **)&e->boundary_entry_point, entries, sizeof(int)));
     int *fill = NULL;
@@ -122,7 +123,7 @@ static int build_boundary_masks(struct gsn_explicit *e)
         for (int k = values->offset[b];
              e->boundary_point_mask[b] && k < values->offset[b + 1]; ++k) {
             int at = fill[values->index[k]]++;
-            e->boundary_entry[at] = k;
+            e->boundary_entry_value[at] = values->value[k];
             e->boundary_entry_point[at] = b;
         }
     free(fill);
@@ -146,12 +147,11 @@ static void boundary_traction(const struct gsn_explicit *e, int b, double t[3])
 
 /* The boundary term of the weak form on constrained surfaces (explicit.h):
  * force_I = sum_q Psi_I(x_q) t w_q for the constrained components, to be
- * taken off f_int. Serial, in boundary point order: the same sums whatever
- * the thread count. */
+ * taken off f_int. Each particle adds its entries in boundary point order:
+ * the sums of a serial scatter, whatever the thread count. */
 static void boundary_term(const struct gsn_explicit *e, double *force)
 {
     const struct gsn_quadrature *q = e->quadrature;
-    const struct gsn_shape_rows *values = &q->boundary_values;
     double *t = e->boundary_traction;
     int parallel = parallel_worth(q->boundary_point_count);
 #pragma omp parallel if (parallel)
@@ -167,12 +167,13 @@ static void boundary_term(const struct gsn_explicit *e, double *force)
             double f[3] = {0.0, 0.0, 0.0};
             for (int j = e->boundary_entry_offset[I];
                  j < e->boundary_entry_offset[I + 1]; ++j) {
-                int b = e->boundary_entry_point[j], k = e->boundary_entry[j];
+                int b = e->boundary_entry_point[j];
                 int mask = e->boundary_point_mask[b];
                 double w = q->boundary_point_weight[b];
+                double value = e->boundary_entry_value[j];
                 for (int i = 0; i < 3; ++i)
                     if (mask & (1 << i))
-                        f[i] += values->value[k] * t[3 * b + i] * w;
+                        f[i] += value * t[3 * b + i] * w;
             }
             memcpy(&force[3 * (size_t)I], f, sizeof f);
         }

@@ -86,9 +86,10 @@ struct gsn_explicit {
                                         quadrature point (bit k: component k) */
     double *boundary_traction; /* boundary points x 3: t of the step, Pa */
     /* The entries of boundary_values at constrained boundary points, by
-     * particle (offset particles + 1), each with its boundary point, in
-     * boundary point order. */
-    int *boundary_entry_offset, *boundary_entry, *boundary_entry_point;
+     * particle (offset particles + 1), each with its value Psi_I(x_q) and
+     * boundary point q, in boundary point order. */
+    int *boundary_entry_offset, *boundary_entry_point;
+    double *boundary_entry_value;
 };
 
 /* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped
