@@ -176,6 +176,11 @@ static int build_slots(struct gsn_point_blocks *b, const int *particle,
         if (count > b->max_block_slots)
             b->max_block_slots = count;
     }
+    /* allocated for one slot an entry: keep what the slots use */
+    int *shrunk =
+        realloc(b->slot_particle, sizeof(int) * (size_t)(slots ? slots : 1));
+    if (shrunk)
+        b->slot_particle = shrunk;
 done:
     free(mark);
     free(slot_of);
