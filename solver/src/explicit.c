@@ -505,9 +505,9 @@ static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
     const struct gsn_quadrature *q = e->quadrature;
     const struct gsn_point_blocks *b = e->blocks;
     int p = e->main_point_count + b->subcells * L + s;
-    if (q->gradient.offset[p] == q->gradient.offset[p + 1])
-        return; /* an empty sub-cell: weight 0, no entries */
     int r = gsn_point_blocks_subcell_row(b, k, L, s);
+    if (b->row_start[r] == b->row_start[r + 1])
+        return; /* an empty sub-cell: weight 0, no entries */
     double w = q->point_weight[p];
     double *H = &e->displacement_gradient[9 * p];
     double dH[9], eps[6], deps[6], sigma[6], mean[6], P[9];
@@ -627,9 +627,9 @@ static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
         elastic_piola(sigma, w[L], &fold[9 * (L - p0)]);
         for (int s = 0; s < S; ++s) {
             int p = e->main_point_count + S * L + s;
-            if (q->gradient.offset[p] == q->gradient.offset[p + 1])
-                continue;
             int r = gsn_point_blocks_subcell_row(b, k, L, s);
+            if (b->row_start[r] == b->row_start[r + 1])
+                continue; /* an empty sub-cell */
             double Hs[9], P[9];
             row_gradient(b, r, u4, Hs);
             for (int a = 0; a < 9; ++a)
