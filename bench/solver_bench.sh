@@ -4,15 +4,20 @@
 # boundary values) on Slope I at paper resolution, on 1 and on 2 threads,
 # RUNS runs each; prints every run and the medians. The model is made once
 # by pre; each run solves STEPS steps at the paper's time step and writes
-# only its first and last frames.
-# Usage: bench/solver_bench.sh [BUILD_DIR] [RUNS] [STEPS] [CASE]
-#        (default build, 3, 300, geometries/slope_I.yaml)
+# only its first and last frames. INTEGRATION replaces the case's
+# integration (e.g. scni for plain SCNI; slope_I.yaml has MSCNI); THREADS
+# lists the thread counts to run.
+# Usage: bench/solver_bench.sh [BUILD_DIR] [RUNS] [STEPS] [CASE] [INTEGRATION]
+#        (default build, 3, 300, geometries/slope_I.yaml, the case's)
+#        THREADS="1 2" (default) in the environment
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-build}
 runs=${2:-3}
 steps=${3:-300}
 case_file=${4:-$root/geometries/slope_I.yaml}
+integration=${5:-}
+thread_counts=${THREADS:-1 2}
 geoscni=$root/$build/bin/geoscni
 [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
 work=$(mktemp -d /tmp/geoscni_solver_bench.XXXXXX)
@@ -21,9 +26,12 @@ trap 'rm -rf "$work"' EXIT
 sed -e "s|^geometry: *|geometry: $(dirname "$case_file")/|" \
     -e "s|^\( *end:\).*|\1 $(echo "$steps" | awk '{print $1 * 1e-3}')|" \
     -e "s|^\( *every:\).*|\1 1000|" "$case_file" >"$work/case.yaml"
+if [ -n "$integration" ]; then
+    sed -i -e "s|^integration:.*|integration: $integration|" "$work/case.yaml"
+fi
 "$geoscni" pre "$work/case.yaml" -o "$work/out" -q
-echo "geoscni solve $(basename "$case_file"), $steps steps, $runs runs per thread count ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
-for threads in 1 2; do
+echo "geoscni solve $(basename "$case_file") ($(grep '^integration:' "$work/case.yaml" | sed 's/ *#.*//')), $steps steps, $runs runs per thread count ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
+for threads in $thread_counts; do
     i=1
     : >"$work/rates.$threads"
     while [ "$i" -le "$runs" ]; do
@@ -36,7 +44,7 @@ for threads in 1 2; do
         i=$((i + 1))
     done
 done
-for threads in 1 2; do
+for threads in $thread_counts; do
     median=$(sort -g "$work/rates.$threads" | sed -n "$(((runs + 1) / 2))p")
     echo "median, $threads thread(s): $median particle-steps/s"
 done

@@ -10,6 +10,9 @@
 /* Lambda_c with a condition estimate worse than this cannot be trusted to
  * impose the boundary values to 1e-8 relative. */
 #define CONSTRAINT_RCOND_LIMIT 1e-12
+/* Constrained particle components below which the three solves run on one
+ * thread (a parallel region costs more than small solves). */
+enum { CONSTRAINT_PARALLEL_MIN = 2048 };
 
 struct component_constraint {
     int count;        /* |B_c| */
@@ -19,6 +22,11 @@ struct component_constraint {
     int *column;
     double *entry;
     double *rhs; /* right-hand side, then solution */
+    /* The entries Psi_I(X_J) of the rows J in B_c with I not in B_c (the
+     * right-hand side of a correction), in row order. */
+    int *free_offset; /* count + 1 */
+    int *free_index;  /* I */
+    double *free_value;
     klu_common common;
     klu_symbolic *symbolic;
     klu_numeric *numeric;
@@ -52,6 +60,9 @@ void gsn_constraints_destroy(struct gsn_constraints **constraints)
         free(cc->column);
         free(cc->entry);
         free(cc->rhs);
+        free(cc->free_offset);
+        free(cc->free_index);
+        free(cc->free_value);
         free(k->slot[c]);
     }
     free(k->surface_mask);
@@ -150,6 +161,29 @@ static int component_build(struct gsn_constraints *k, int c,
             at++;
         }
     }
+    cc->free_offset = calloc(count + 1, sizeof(int));
+    GSN_CHECK(cc->free_offset, GSN_ERR_MEMORY, "out of memory");
+    for (size_t s = 0; s < count; ++s) {
+        int p = cc->particle[s];
+        cc->free_offset[s + 1] = cc->free_offset[s] +
+                                 (values->offset[p + 1] - values->offset[p]) -
+                                 (cc->row_offset[s + 1] - cc->row_offset[s]);
+    }
+    size_t free_entries = (size_t)cc->free_offset[count];
+    cc->free_index = malloc(sizeof(int) * (free_entries ? free_entries : 1));
+    cc->free_value = malloc(sizeof(double) * (free_entries ? free_entries : 1));
+    GSN_CHECK(cc->free_index && cc->free_value, GSN_ERR_MEMORY,
+              "out of memory");
+    for (size_t s = 0; s < count; ++s) {
+        int p = cc->particle[s], at = cc->free_offset[s];
+        for (int e = values->offset[p]; e < values->offset[p + 1]; ++e) {
+            if (k->slot[c][values->index[e]] >= 0)
+                continue;
+            cc->free_index[at] = values->index[e];
+            cc->free_value[at] = values->value[e];
+            at++;
+        }
+    }
     /* CSR of Lambda is CSC of Lambda^T: KLU factors Lambda^T, and
      * klu_tsolve then solves Lambda x = b. */
     klu_defaults(&cc->common);
@@ -238,35 +272,49 @@ int gsn_constraints_ramping(const struct gsn_constraints *constraints,
     return time < constraints->ramp;
 }
 
+/* Component c of gsn_constraints_apply; 0 when KLU fails. */
+static int component_apply(struct gsn_constraints *constraints, int c,
+                           double factor, double *field)
+{
+    struct component_constraint *cc = &constraints->component[c];
+    for (int s = 0; s < cc->count; ++s) {
+        double target = cc->velocity[s] * factor;
+        for (int e = cc->free_offset[s]; e < cc->free_offset[s + 1]; ++e)
+            target -= cc->free_value[e] * field[3 * cc->free_index[e] + c];
+        cc->rhs[s] = target;
+    }
+    int ok = klu_tsolve(cc->symbolic, cc->numeric, cc->count, 1, cc->rhs,
+                        &cc->common);
+    if (!ok)
+        return 0;
+    for (int s = 0; s < cc->count; ++s)
+        field[3 * cc->particle[s] + c] = cc->rhs[s];
+    return 1;
+}
+
 int gsn_constraints_apply(struct gsn_constraints *constraints,
                           const struct gsn_shape_rows *values,
                           enum gsn_constraint_field kind, double time,
                           double *field)
 {
+    /* The components read and write only their own column of field, and
+     * each has its own KLU workspace: they run in parallel, the same bits
+     * on any thread count. */
+    GSN_CHECK(values->row_count == constraints->particle_count,
+              GSN_ERR_INTERNAL, "shape values are not one row per particle");
     const double factor = gsn_ramp_factor(constraints->ramp, kind, time);
-    for (int c = 0; c < 3; ++c) {
-        struct component_constraint *cc = &constraints->component[c];
-        if (cc->count == 0)
-            continue;
-        const int *slot = constraints->slot[c];
-        for (int s = 0; s < cc->count; ++s) {
-            int p = cc->particle[s];
-            double target = cc->velocity[s] * factor;
-            for (int e = values->offset[p]; e < values->offset[p + 1]; ++e) {
-                int i = values->index[e];
-                if (slot[i] < 0)
-                    target -= values->value[e] * field[3 * i + c];
-            }
-            cc->rhs[s] = target;
-        }
-        int ok = klu_tsolve(cc->symbolic, cc->numeric, cc->count, 1, cc->rhs,
-                            &cc->common);
-        GSN_CHECK(ok, GSN_ERR_NUMERICAL,
+    int ok[3] = {1, 1, 1}, work = 0;
+    for (int c = 0; c < 3; ++c)
+        work += constraints->component[c].count;
+#pragma omp parallel for schedule(dynamic,                                     \
+                                  1) if (work >= CONSTRAINT_PARALLEL_MIN)
+    for (int c = 0; c < 3; ++c)
+        if (constraints->component[c].count > 0)
+            ok[c] = component_apply(constraints, c, factor, field);
+    for (int c = 0; c < 3; ++c)
+        GSN_CHECK(ok[c], GSN_ERR_NUMERICAL,
                   "the %c boundary solve failed (KLU status %d)",
-                  component_names[c], cc->common.status);
-        for (int s = 0; s < cc->count; ++s)
-            field[3 * cc->particle[s] + c] = cc->rhs[s];
-    }
+                  component_names[c], constraints->component[c].common.status);
     return GSN_OK;
 }
 

@@ -57,7 +57,9 @@ int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
 void gsn_constraints_destroy(struct gsn_constraints **constraints);
 
 /* Corrects field (n x 3 coefficients) in place so that the prescribed
- * values hold at time t at every constrained particle. */
+ * values hold at time t at every constrained particle. values: the rows
+ * given to gsn_constraints_create (whose entries were taken from them
+ * once, at create). */
 int gsn_constraints_apply(struct gsn_constraints *constraints,
                           const struct gsn_shape_rows *values,
                           enum gsn_constraint_field kind, double time,

@@ -17,8 +17,9 @@ enum { CONSTRAINT_REFRESH = 64 };
  * parallel region costs more than they do (and spin-waiting threads on a
  * loaded machine cost far more). */
 enum { PARALLEL_MIN_ITEMS = 2048 };
-/* Points per block of the one-pass step (point_blocks.h). */
-enum { BLOCK_SIZE = 128 };
+/* Particles per block of the one-pass step (point_blocks.h), with and
+ * without stabilization points; at most CHUNK. */
+enum { BLOCK_PARTICLES = 64, BLOCK_PARTICLES_STABILIZED = 32 };
 /* Points per batch of the material update. */
 enum { CHUNK = 64 };
 /* Doubles of per-thread work per batch: G, strain increment, old stress,
@@ -33,6 +34,8 @@ enum {
     POWER_WINDOW = 10
 };
 #define POWER_TOLERANCE 1e-3
+
+static size_t block_work_size(const struct gsn_point_blocks *b);
 
 static int parallel_worth(int items)
 {
@@ -74,10 +77,13 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
         free(arrays[i]);
     free(e->point_failed);
     free(e->displacement_gradient);
-    free(e->increment);
     free(e->slot_force);
     gsn_point_blocks_destroy(&e->blocks);
     free(e->boundary_point_mask);
+    free(e->boundary_traction);
+    free(e->boundary_entry_offset);
+    free(e->boundary_entry_value);
+    free(e->boundary_entry_point);
     free(e);
     *handle = NULL;
 }
@@ -86,12 +92,43 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
 static int build_boundary_masks(struct gsn_explicit *e)
 {
     const struct gsn_quadrature *q = e->quadrature;
-    GSN_CALL(alloc_array((void **)&e->boundary_point_mask,
-                         (size_t)q->boundary_point_count, sizeof(int)));
-    for (int b = 0; b < q->boundary_point_count && e->constraints; ++b)
+    const struct gsn_shape_rows *values = &q->boundary_values;
+    int n = e->particle_count, nb = q->boundary_point_count;
+    GSN_CALL(
+        alloc_array((void **)&e->boundary_point_mask, (size_t)nb, sizeof(int)));
+    GSN_CALL(alloc_array((void **)&e->boundary_traction, 3 * (size_t)nb,
+                         sizeof(double)));
+    GSN_CALL(alloc_array((void **)&e->boundary_entry_offset, (size_t)n + 1,
+                         sizeof(int)));
+    for (int b = 0; b < nb && e->constraints; ++b)
         e->boundary_point_mask[b] = gsn_constraints_surface_mask(
             e->constraints,
             e->model->facet_surface[q->boundary_point_facet[b]]);
+    /* The entries of constrained boundary points by particle, in boundary
+     * point order: boundary_term gathers them in parallel and adds in the
+     * order of the serial scatter. */
+    for (int b = 0; b < nb; ++b)
+        for (int k = values->offset[b];
+             e->boundary_point_mask[b] && k < values->offset[b + 1]; ++k)
+            e->boundary_entry_offset[values->index[k] + 1]++;
+    for (int i = 0; i < n; ++i)
+        e->boundary_entry_offset[i + 1] += e->boundary_entry_offset[i];
+    size_t entries = (size_t)e->boundary_entry_offset[n];
+    GSN_CALL(alloc_array((void **)&e->boundary_entry_value, entries,
+                         sizeof(double)));
+    GSN_CALL(
+        alloc_array((void **)&e->boundary_entry_point, entries, sizeof(int)));
+    int *fill = NULL;
+    GSN_CALL(alloc_array((void **)&fill, (size_t)n + 1, sizeof(int)));
+    memcpy(fill, e->boundary_entry_offset, sizeof(int) * (size_t)n);
+    for (int b = 0; b < nb; ++b)
+        for (int k = values->offset[b];
+             e->boundary_point_mask[b] && k < values->offset[b + 1]; ++k) {
+            int at = fill[values->index[k]]++;
+            e->boundary_entry_value[at] = values->value[k];
+            e->boundary_entry_point[at] = b;
+        }
+    free(fill);
     return GSN_OK;
 }
 
@@ -112,25 +149,36 @@ static void boundary_traction(const struct gsn_explicit *e, int b, double t[3])
 
 /* The boundary term of the weak form on constrained surfaces (explicit.h):
  * force_I = sum_q Psi_I(x_q) t w_q for the constrained components, to be
- * taken off f_int. Serial, in boundary point order: the same sums whatever
- * the thread count. */
+ * taken off f_int. Each particle adds its entries in boundary point order:
+ * the sums of a serial scatter, whatever the thread count. */
 static void boundary_term(const struct gsn_explicit *e, double *force)
 {
     const struct gsn_quadrature *q = e->quadrature;
-    const struct gsn_shape_rows *values = &q->boundary_values;
-    memset(force, 0, sizeof(double) * 3 * (size_t)e->particle_count);
-    for (int b = 0; b < q->boundary_point_count; ++b) {
-        int mask = e->boundary_point_mask[b];
-        if (!mask)
-            continue;
-        double t[3];
-        boundary_traction(e, b, t);
-        double w = q->boundary_point_weight[b];
-        for (int k = values->offset[b]; k < values->offset[b + 1]; ++k)
-            for (int i = 0; i < 3; ++i)
-                if (mask & (1 << i))
-                    force[3 * values->index[k] + i] +=
-                        values->value[k] * t[i] * w;
+    double *t = e->boundary_traction;
+    int parallel = parallel_worth(q->boundary_point_count);
+#pragma omp parallel if (parallel)
+    {
+#pragma omp for
+        for (int b = 0; b < q->boundary_point_count; ++b)
+            if (e->boundary_point_mask[b])
+                boundary_traction(e, b, &t[3 * b]);
+                /* force_I = sum_q Psi_I(x_q) t w_q, gathered per particle in
+                 * boundary point order (the order of a serial scatter). */
+#pragma omp for
+        for (int I = 0; I < e->particle_count; ++I) {
+            double f[3] = {0.0, 0.0, 0.0};
+            for (int j = e->boundary_entry_offset[I];
+                 j < e->boundary_entry_offset[I + 1]; ++j) {
+                int b = e->boundary_entry_point[j];
+                int mask = e->boundary_point_mask[b];
+                double w = q->boundary_point_weight[b];
+                double value = e->boundary_entry_value[j];
+                for (int i = 0; i < 3; ++i)
+                    if (mask & (1 << i))
+                        f[i] += value * t[3 * b + i] * w;
+            }
+            memcpy(&force[3 * (size_t)I], f, sizeof f);
+        }
     }
 }
 
@@ -229,7 +277,6 @@ int gsn_explicit_create(const struct gsn_model *m,
         {(void **)&e->new_acceleration, n3, sizeof(double)},
         {(void **)&e->piola, 9 * points, sizeof(double)},
         {(void **)&e->displacement_gradient, 9 * points, sizeof(double)},
-        {(void **)&e->increment, n3, sizeof(double)},
         {(void **)&e->point_energy, points, sizeof(double)},
         {(void **)&e->point_failed, points, sizeof(int)},
         {(void **)&e->damping_force, n3, sizeof(double)},
@@ -239,21 +286,27 @@ int gsn_explicit_create(const struct gsn_model *m,
         GSN_CALL_GOTO(
             alloc_array(arrays[i].array, arrays[i].count, arrays[i].size), rc,
             fail);
-    GSN_CALL_GOTO(gsn_point_blocks_create(&quadrature->gradient,
-                                          e->particle_count, BLOCK_SIZE,
-                                          e->main_point_count, &e->blocks),
+    GSN_CALL_GOTO(gsn_point_blocks_create(quadrature,
+                                          quadrature->point_count >
+                                                  quadrature->main_point_count
+                                              ? BLOCK_PARTICLES_STABILIZED
+                                              : BLOCK_PARTICLES,
+                                          &e->blocks),
                   rc, fail);
     GSN_CALL_GOTO(
         alloc_array((void **)&e->slot_force,
                     3 * (size_t)e->blocks->block_slot[e->blocks->block_count],
                     sizeof(double)),
         rc, fail);
-    GSN_CALL_GOTO(
-        alloc_array((void **)&e->thread_work,
-                    (size_t)e->thread_count *
-                        (6 * (size_t)e->blocks->max_block_slots + CHUNK_WORK),
-                    sizeof(double)),
-        rc, fail);
+    {
+        /* 64-byte aligned, so the 4-double slots never straddle a line */
+        size_t bytes = sizeof(double) * (size_t)e->thread_count *
+                       block_work_size(e->blocks);
+        e->thread_work = aligned_alloc(64, bytes);
+        GSN_CHECK_GOTO(e->thread_work, rc, GSN_ERR_MEMORY, fail,
+                       "cannot allocate %zu bytes of thread work", bytes);
+        memset(e->thread_work, 0, bytes);
+    }
     GSN_CALL_GOTO(build_boundary_masks(e), rc, fail);
     GSN_CALL_GOTO(build_mass(e, c), rc, fail);
     GSN_CALL_GOTO(gsn_material_initialize(material, main, e->stress, e->state),
@@ -316,36 +369,66 @@ static double voigt_contract(const double a[6], const double b[6])
            2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
 }
 
-/* dH_p = sum_I du_I (x) g_pI over row p, du gathered into the block's
- * slots (eq. (21) applied to the increment). */
-static void point_increment(const struct gsn_explicit *e, int p,
-                            const double *du, double dH[9])
+/* Four doubles as one SIMD register (GCC and Clang vector extension):
+ * the gather and scatter below are written with it because the compilers
+ * do not vectorize the 4-element loops by themselves. Loads and stores
+ * through it need 8-byte alignment only; multiplies and adds stay separate
+ * (no fused multiply-add), so the bits are those of the scalar loop. */
+typedef double gsn_v4 __attribute__((vector_size(32), aligned(8), may_alias));
+
+/* dH = sum_I u_I (x) g_I over packed row r (eq. (21) applied to the
+ * increment). u is gathered into the block's slots with 4 doubles per slot
+ * (the 4th zero), so every entry is three 4-wide multiply-adds into the
+ * columns of dH. Two sets of sums, even and odd entries, added at the end,
+ * so that consecutive entries do not wait for each other's additions. */
+static inline void row_gradient(const struct gsn_point_blocks *b, int r,
+                                const double *restrict u4, double dH[9])
 {
-    const struct gsn_shape_rows *g = &e->quadrature->gradient;
-    const int *slot = e->blocks->entry_slot;
-    for (int a = 0; a < 9; ++a)
-        dH[a] = 0.0;
-    for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
-        const double *u = &du[3 * slot[k]];
-        const double *grad = &g->gradient[3 * k];
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                dH[3 * i + j] += u[i] * grad[j];
+    const uint16_t *restrict slot = b->entry_slot;
+    const double *restrict g = b->entry_gradient;
+    const gsn_v4 zero = {0.0, 0.0, 0.0, 0.0};
+    gsn_v4 c0 = zero, c1 = zero, c2 = zero, d0 = zero, d1 = zero, d2 = zero;
+    int k = b->row_start[r];
+    const int end = b->row_start[r + 1];
+    for (; k + 1 < end; k += 2) {
+        const gsn_v4 u = *(const gsn_v4 *)&u4[4 * slot[k]];
+        const gsn_v4 v = *(const gsn_v4 *)&u4[4 * slot[k + 1]];
+        c0 += u * g[3 * k];
+        c1 += u * g[3 * k + 1];
+        c2 += u * g[3 * k + 2];
+        d0 += v * g[3 * k + 3];
+        d1 += v * g[3 * k + 4];
+        d2 += v * g[3 * k + 5];
+    }
+    if (k < end) {
+        const gsn_v4 u = *(const gsn_v4 *)&u4[4 * slot[k]];
+        c0 += u * g[3 * k];
+        c1 += u * g[3 * k + 1];
+        c2 += u * g[3 * k + 2];
+    }
+    c0 += d0;
+    c1 += d1;
+    c2 += d2;
+    for (int i = 0; i < 3; ++i) {
+        dH[3 * i] = c0[i];
+        dH[3 * i + 1] = c1[i];
+        dH[3 * i + 2] = c2[i];
     }
 }
 
-/* force_slot += P_p g_pI over row p (eq. (29) with P = J sigma F^-T w). */
-static void point_scatter(const struct gsn_explicit *e, int p, double *force)
+/* force_slot += P g_I over packed row r (eq. (29) with P = J sigma F^-T w),
+ * into slots of 4 doubles (the 4th stays zero). */
+static inline void row_scatter(const struct gsn_point_blocks *b, int r,
+                               const double P[9], double *restrict f4)
 {
-    const struct gsn_shape_rows *g = &e->quadrature->gradient;
-    const int *slot = e->blocks->entry_slot;
-    const double *P = &e->piola[9 * p];
-    for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
-        const double *grad = &g->gradient[3 * k];
-        double *f = &force[3 * slot[k]];
-        for (int i = 0; i < 3; ++i)
-            f[i] += P[3 * i] * grad[0] + P[3 * i + 1] * grad[1] +
-                    P[3 * i + 2] * grad[2];
+    const uint16_t *restrict slot = b->entry_slot;
+    const double *restrict g = b->entry_gradient;
+    const gsn_v4 p0 = {P[0], P[3], P[6], 0.0};
+    const gsn_v4 p1 = {P[1], P[4], P[7], 0.0};
+    const gsn_v4 p2 = {P[2], P[5], P[8], 0.0};
+    for (int k = b->row_start[r]; k < b->row_start[r + 1]; ++k) {
+        gsn_v4 *f = (gsn_v4 *)&f4[4 * slot[k]];
+        *f += p0 * g[3 * k] + p1 * g[3 * k + 1] + p2 * g[3 * k + 2];
     }
 }
 
@@ -367,11 +450,12 @@ static double elastic_share(const double deps[6], double plastic_increment)
     return share < 0.0 ? 0.0 : share > 1.0 ? 1.0 : share;
 }
 
-/* Main points [p0, p1): F_{n+1} = I + H + dH, the incremental gradient on
- * the mid-step configuration G = dH (I + H + dH/2)^-1, the objective
- * update with the material (Fig. 3), the work sigma : d eps and P. */
-static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
-                      double *work)
+/* Nodal points [p0, p1) with their increments dH (9 each, from p0):
+ * F_{n+1} = I + H + dH, the incremental gradient on the mid-step
+ * configuration G = dH (I + H + dH/2)^-1, the objective update with the
+ * material (Fig. 3), the work sigma : d eps and P. */
+static int main_chunk(struct gsn_explicit *e, int p0, int p1,
+                      const double *dH_block, double *work)
 {
     const double *w = e->quadrature->point_weight;
     double *G = work, *deps = G + 9 * CHUNK, *old = deps + 6 * CHUNK;
@@ -381,8 +465,8 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
     for (int p = p0; p < p1; ++p) {
         int b = p - p0;
         const double *H = &e->displacement_gradient[9 * p];
-        double dH[9], F1[9], Fmid[9], Fmid_inv[9];
-        point_increment(e, p, du, dH);
+        const double *dH = &dH_block[9 * b];
+        double F1[9], Fmid[9], Fmid_inv[9];
         for (int a = 0; a < 9; ++a) {
             double identity = (a % 4 == 0) ? 1.0 : 0.0;
             Hnew[9 * b + a] = H[a] + dH[a];
@@ -436,105 +520,174 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1, const double *du,
     return GSN_OK;
 }
 
-/* A stabilization point: the elastic stress rate of its row (Puso et al.
- * 2008), which vanishes for every linear displacement field, scaled by the
- * elastic share of its particle's nodal point in this step: the sub-cell
- * deviations then yield with the soil instead of adding an elastic
- * stiffness that grows without bound once it flows (docs/solver.md,
- * "Stabilization"). */
-static void stabilization_point(struct gsn_explicit *e, int p, const double *du)
+/* sigma w as a 3x3 matrix: the P of a stabilization point (small strain on
+ * the reference configuration). */
+static void elastic_piola(const double sigma[6], double w, double P[9])
 {
-    double w = e->quadrature->point_weight[p];
-    double *H = &e->displacement_gradient[9 * p];
-    double dH[9], deps[6], rate[6], sigma[6], mean[6];
-    point_increment(e, p, du, dH);
+    gsn_voigt_to_matrix(sigma, P);
     for (int a = 0; a < 9; ++a)
+        P[a] *= w;
+}
+
+/* Stabilization point s of particle L (block k): the elastic stress rate of
+ * its row B_s - B_L (Puso et al. 2008), which vanishes for every linear
+ * displacement field, scaled by the elastic share of L's nodal point in
+ * this step: the sub-cell deviations then yield with the soil instead of
+ * adding an elastic stiffness that grows without bound once it flows
+ * (docs/solver.md, "Stabilization"). (B_s - B_L) du = B_s du - dH_L with
+ * the increment dH_L of the nodal point; the force P_s (B_s - B_L) is
+ * scattered as P_s B_s here and -P_s B_L through fold, the nodal point's
+ * P. */
+static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
+                                const double *u4, const double dH_L[9],
+                                double fold[9], double *f4)
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    const struct gsn_point_blocks *b = e->blocks;
+    int p = e->main_point_count + b->subcells * L + s;
+    int r = gsn_point_blocks_subcell_row(b, k, L, s);
+    if (b->row_start[r] == b->row_start[r + 1])
+        return; /* an empty sub-cell: weight 0, no entries */
+    double w = q->point_weight[p];
+    double *H = &e->displacement_gradient[9 * p];
+    double dH[9], deps[6], rate[6], sigma[6], mean[6], P[9];
+    row_gradient(b, r, u4, dH);
+    for (int a = 0; a < 9; ++a) {
+        dH[a] -= dH_L[a];
         H[a] += dH[a];
+    }
     gsn_matrix_sym_to_voigt(dH, deps);
     elastic_stress(e->bulk_modulus, e->shear_modulus, deps, rate);
-    double ratio = e->stiffness_ratio[e->quadrature->point_particle[p]];
+    double ratio = e->stiffness_ratio[L];
     for (int a = 0; a < 6; ++a)
         sigma[a] = e->stress[6 * p + a] + ratio * rate[a];
     for (int a = 0; a < 6; ++a)
         mean[a] = 0.5 * (e->stress[6 * p + a] + sigma[a]);
     memcpy(&e->stress[6 * p], sigma, sizeof sigma);
     e->point_energy[p] = voigt_contract(mean, deps) * w;
-    double *P = &e->piola[9 * p];
-    gsn_voigt_to_matrix(sigma, P);
+    elastic_piola(sigma, w, P);
+    row_scatter(b, r, P, f4);
     for (int a = 0; a < 9; ++a)
-        P[a] *= w;
+        fold[a] -= P[a];
 }
 
-/* Per-thread work: the block's increments and forces, and a chunk's. */
+/* Per-thread work of one block: u and forces (4 per slot), the nodal
+ * increments and folded P (9 per particle), and a chunk's material work. */
+static size_t block_work_size(const struct gsn_point_blocks *b)
+{
+    size_t size = 8 * (size_t)b->max_block_slots +
+                  18 * (size_t)b->max_block_particles + CHUNK_WORK;
+    return (size + 7) / 8 * 8; /* whole cache lines per thread */
+}
+
 static double *block_work(const struct gsn_explicit *e)
 {
-    size_t size = 6 * (size_t)e->blocks->max_block_slots + CHUNK_WORK;
-    return &e->thread_work[(size_t)omp_get_thread_num() * size];
+    return &e->thread_work[(size_t)omp_get_thread_num() *
+                           block_work_size(e->blocks)];
 }
 
-/* Gathers u (n x 3) into the slots of block k. */
+/* Gathers u - u0 (n x 3; u0 may be NULL) into the slots of block k,
+ * 4 doubles per slot. */
 static void block_gather(const struct gsn_explicit *e, int k, const double *u,
-                         double *local)
+                         const double *u0, double *restrict local)
 {
     const struct gsn_point_blocks *b = e->blocks;
-    for (int s = b->block_slot[k]; s < b->block_slot[k + 1]; ++s)
-        memcpy(&local[3 * (s - b->block_slot[k])], &u[3 * b->slot_particle[s]],
-               3 * sizeof(double));
+    for (int s = b->block_slot[k]; s < b->block_slot[k + 1]; ++s) {
+        const size_t I = 3 * (size_t)b->slot_particle[s];
+        double *l = &local[4 * (size_t)(s - b->block_slot[k])];
+        for (int i = 0; i < 3; ++i)
+            l[i] = u0 ? u[I + i] - u0[I + i] : u[I + i];
+        l[3] = 0.0;
+    }
 }
 
-/* The step's pass over block k: kinematics, stress and forces of its points
- * from the increments e->increment, reading each gradient row once. */
+/* Copies the block's forces (4 per slot) to its slots of e->slot_force. */
+static void block_store(struct gsn_explicit *e, int k, const double *f4)
+{
+    const struct gsn_point_blocks *b = e->blocks;
+    double *out = &e->slot_force[3 * (size_t)b->block_slot[k]];
+    int slots = b->block_slot[k + 1] - b->block_slot[k];
+    for (int s = 0; s < slots; ++s)
+        for (int i = 0; i < 3; ++i)
+            out[3 * s + i] = f4[4 * s + i];
+}
+
+/* The step's pass over block k: kinematics, stress and forces of its
+ * points from the increments d - d_n, reading its rows once. */
 static int block_step(struct gsn_explicit *e, int k)
 {
     const struct gsn_point_blocks *b = e->blocks;
-    int slots = b->block_slot[k + 1] - b->block_slot[k];
-    double *du = block_work(e), *force = du + 3 * (size_t)slots;
-    double *work = du + 6 * (size_t)b->max_block_slots;
-    block_gather(e, k, e->increment, du);
-    memset(force, 0, sizeof(double) * 3 * (size_t)slots);
-    int rc = GSN_OK;
-    for (int p0 = b->block_point[k]; p0 < b->block_point[k + 1]; p0 += CHUNK) {
-        int p1 = p0 + CHUNK < b->block_point[k + 1] ? p0 + CHUNK
-                                                    : b->block_point[k + 1];
-        if (p0 < e->main_point_count) {
-            if (main_chunk(e, p0, p1, du, work) != GSN_OK) {
-                rc = GSN_ERR_NUMERICAL;
-                continue;
-            }
-        } else {
-            for (int p = p0; p < p1; ++p)
-                stabilization_point(e, p, du);
-        }
-        for (int p = p0; p < p1; ++p)
-            point_scatter(e, p, force);
-    }
-    memcpy(&e->slot_force[3 * (size_t)b->block_slot[k]], force,
-           sizeof(double) * 3 * (size_t)slots);
-    return rc;
+    const int S = b->subcells;
+    const int p0 = b->block_particle[k], p1 = b->block_particle[k + 1];
+    const int slots = b->block_slot[k + 1] - b->block_slot[k];
+    double *u4 = block_work(e), *f4 = u4 + 4 * (size_t)b->max_block_slots;
+    double *dH = f4 + 4 * (size_t)b->max_block_slots;
+    double *fold = dH + 9 * (size_t)b->max_block_particles;
+    double *work = fold + 9 * (size_t)b->max_block_particles;
+    block_gather(e, k, e->displacement, e->previous_displacement, u4);
+    memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
+    memset(&e->point_failed[p0], 0, sizeof(int) * (size_t)(p1 - p0));
+    for (int L = p0; L < p1; ++L)
+        row_gradient(b, gsn_point_blocks_main_row(b, k, L), u4,
+                     &dH[9 * (L - p0)]);
+    if (main_chunk(e, p0, p1, dH, work) != GSN_OK)
+        return GSN_ERR_NUMERICAL;
+    memcpy(fold, &e->piola[9 * (size_t)p0],
+           sizeof(double) * 9 * (size_t)(p1 - p0));
+    for (int L = p0; L < p1; ++L)
+        for (int s = 0; s < S; ++s)
+            stabilization_point(e, k, L, s, u4, &dH[9 * (L - p0)],
+                                &fold[9 * (L - p0)], f4);
+    for (int L = p0; L < p1; ++L)
+        row_scatter(b, gsn_point_blocks_main_row(b, k, L), &fold[9 * (L - p0)],
+                    f4);
+    block_store(e, k, f4);
+    return GSN_OK;
 }
 
-/* The linear elastic pass over block k for y = K x (power iteration). */
+/* The linear elastic pass over block k for y = K x (power iteration), with
+ * the stabilization split as in block_step. */
 static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
 {
+    const struct gsn_quadrature *q = e->quadrature;
     const struct gsn_point_blocks *b = e->blocks;
-    const double *w = e->quadrature->point_weight;
-    int slots = b->block_slot[k + 1] - b->block_slot[k];
-    double *u = block_work(e), *force = u + 3 * (size_t)slots;
-    block_gather(e, k, x, u);
-    memset(force, 0, sizeof(double) * 3 * (size_t)slots);
-    for (int p = b->block_point[k]; p < b->block_point[k + 1]; ++p) {
-        double H[9], eps[6], sigma[6];
-        point_increment(e, p, u, H);
-        gsn_matrix_sym_to_voigt(H, eps);
+    const double *w = q->point_weight;
+    const int S = b->subcells;
+    const int p0 = b->block_particle[k], p1 = b->block_particle[k + 1];
+    const int slots = b->block_slot[k + 1] - b->block_slot[k];
+    double *u4 = block_work(e), *f4 = u4 + 4 * (size_t)b->max_block_slots;
+    double *H = f4 + 4 * (size_t)b->max_block_slots;
+    double *fold = H + 9 * (size_t)b->max_block_particles;
+    block_gather(e, k, x, NULL, u4);
+    memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
+    for (int L = p0; L < p1; ++L) {
+        double eps[6], sigma[6];
+        double *HL = &H[9 * (L - p0)];
+        row_gradient(b, gsn_point_blocks_main_row(b, k, L), u4, HL);
+        gsn_matrix_sym_to_voigt(HL, eps);
         elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
-        double *P = &e->piola[9 * p];
-        gsn_voigt_to_matrix(sigma, P);
-        for (int a = 0; a < 9; ++a)
-            P[a] *= w[p];
-        point_scatter(e, p, force);
+        elastic_piola(sigma, w[L], &fold[9 * (L - p0)]);
+        for (int s = 0; s < S; ++s) {
+            int p = e->main_point_count + S * L + s;
+            int r = gsn_point_blocks_subcell_row(b, k, L, s);
+            if (b->row_start[r] == b->row_start[r + 1])
+                continue; /* an empty sub-cell */
+            double Hs[9], P[9];
+            row_gradient(b, r, u4, Hs);
+            for (int a = 0; a < 9; ++a)
+                Hs[a] -= HL[a];
+            gsn_matrix_sym_to_voigt(Hs, eps);
+            elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
+            elastic_piola(sigma, w[p], P);
+            row_scatter(b, r, P, f4);
+            for (int a = 0; a < 9; ++a)
+                fold[9 * (L - p0) + a] -= P[a];
+        }
     }
-    memcpy(&e->slot_force[3 * (size_t)b->block_slot[k]], force,
-           sizeof(double) * 3 * (size_t)slots);
+    for (int L = p0; L < p1; ++L)
+        row_scatter(b, gsn_point_blocks_main_row(b, k, L), &fold[9 * (L - p0)],
+                    f4);
+    block_store(e, k, f4);
 }
 
 /* The lowest failed point, as a message naming step, time and particle. */
@@ -591,32 +744,27 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
 
 int gsn_explicit_update_stress(struct gsn_explicit *e)
 {
-    int n3 = 3 * e->particle_count;
-    for (int i = 0; i < n3; ++i)
-        e->increment[i] = e->displacement[i] - e->previous_displacement[i];
     int failed = 0;
-    memset(e->point_failed, 0, sizeof(int) * (size_t)e->point_count);
     int parallel = parallel_worth(e->point_count);
-    /* clang-format off */
+    /* One parallel region for the blocks and the reduction (a region costs a
+     * wake-up of the threads; the reduction needs the barrier anyway). */
 #pragma omp parallel if (parallel)
     {
-    /* The nodal points' blocks first: their stiffness ratios scale the
-     * stabilization points' blocks after them. */
+        /* clang-format off */
 #pragma omp for schedule(dynamic, 2) reduction(|:failed)
-    for (int k = 0; k < e->blocks->main_block_count; ++k)
-        failed |= block_step(e, k) != GSN_OK;
-#pragma omp for schedule(dynamic, 2) reduction(|:failed)
-    for (int k = e->blocks->main_block_count; k < e->blocks->block_count; ++k)
-        failed |= block_step(e, k) != GSN_OK;
+        /* clang-format on */
+        for (int k = 0; k < e->blocks->block_count; ++k)
+            failed |= block_step(e, k) != GSN_OK;
+#pragma omp for
+        for (int i = 0; i < e->particle_count; ++i)
+            gsn_point_blocks_reduce_one(e->blocks, i, e->slot_force,
+                                        &e->f_int[3 * (size_t)i]);
     }
-    /* clang-format on */
     if (failed) {
         GSN_CALL(report_failure(e, "det F <= 0 or the material update failed"));
         GSN_CHECK(0, GSN_ERR_NUMERICAL, "step %ld: the stress update failed",
                   e->step + 1);
     }
-    gsn_point_blocks_reduce(e->blocks, e->particle_count, e->slot_force,
-                            e->f_int, parallel_worth(e->particle_count));
     return GSN_OK;
 }
 

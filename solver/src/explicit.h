@@ -11,7 +11,9 @@
  *     configuration; stress by Hughes-Winget + material (Fig. 3)
  *     P_p = det F sigma F^-T w_p  (so that B_I^T sigma det F V_p of eq. (29)
  *     is P_p grad_X Psi_I(X_p), with the chain rule of eq. (25)),
- *     scattered as P_p grad_X Psi_I into the block's slots
+ *     scattered as P_p grad_X Psi_I into the block's slots (a
+ *     stabilization point's row B_s - B_L as B_s, with -P_s B_L folded
+ *     into its particle's nodal point: point_blocks.h)
  *   the slots of every particle summed in block order (the same bits on
  *   any number of threads):
  *     f_int_I = sum_p P_p grad_X Psi_I(X_p)                   eq. (29)
@@ -79,7 +81,8 @@ struct gsn_explicit {
 
     /* Work arrays, owned. */
     double *previous_displacement, *previous_external, *new_acceleration;
-    double *piola;        /* points x 9: P_p w_p */
+    double *piola;        /* points x 9: P_p w_p of the nodal points (the pass
+                             keeps the stabilization points' P in registers) */
     double *point_energy; /* points: internal energy increment, J */
     int *point_failed;    /* points: 1 where pass 1 failed */
     double *thread_work;
@@ -87,7 +90,6 @@ struct gsn_explicit {
     struct gsn_point_blocks *blocks; /* the rows cut for one pass a step */
     double *slot_force;              /* slots x 3: forces of each block */
     double *displacement_gradient;   /* points x 9: H = F - I at t_n */
-    double *increment;               /* n x 3: d_{n+1} - d_n */
     int skip_boundary_term;          /* 1: leave out the boundary term (negative
                                         control of the patch test only) */
     double *stiffness_ratio;         /* main points: the elastic share of the
@@ -98,6 +100,12 @@ struct gsn_explicit {
                                         state, -1 without plasticity */
     int *boundary_point_mask;        /* constrained components at each boundary
                                         quadrature point (bit k: component k) */
+    double *boundary_traction; /* boundary points x 3: t of the step, Pa */
+    /* The entries of boundary_values at constrained boundary points, by
+     * particle (offset particles + 1), each with its value Psi_I(x_q) and
+     * boundary point q, in boundary point order. */
+    int *boundary_entry_offset, *boundary_entry_point;
+    double *boundary_entry_value;
 };
 
 /* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped

@@ -1,7 +1,9 @@
-/* Blocks of points for the one-pass force computation: see point_blocks.h. */
+/* Blocks of particles for the one-pass force computation: see
+ * point_blocks.h. */
 #include "point_blocks.h"
 #include "geoscni/error.h"
 
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -10,89 +12,175 @@ void gsn_point_blocks_destroy(struct gsn_point_blocks **blocks)
     if (!blocks || !*blocks)
         return;
     struct gsn_point_blocks *b = *blocks;
-    free(b->block_point);
+    free(b->block_particle);
     free(b->block_slot);
     free(b->slot_particle);
+    free(b->row_start);
     free(b->entry_slot);
+    free(b->entry_gradient);
     free(b->particle_slot_offset);
     free(b->particle_slot);
     free(b);
     *blocks = NULL;
 }
 
-/* The number of blocks and where each starts. */
-static int cut_blocks(struct gsn_point_blocks *b, int point_count,
-                      int block_size, int split)
+size_t gsn_point_blocks_bytes(const struct gsn_point_blocks *b)
 {
-    int count = 0;
-    for (int start = 0; start < point_count; ++count) {
-        int end = start + block_size;
-        if (start < split && end > split)
-            end = split;
-        start = end < point_count ? end : point_count;
+    size_t rows =
+        (size_t)b->block_particle[b->block_count] * (1 + (size_t)b->subcells);
+    size_t entries = (size_t)b->row_start[rows];
+    size_t slots = (size_t)b->block_slot[b->block_count];
+    return entries * (sizeof(uint16_t) + 3 * sizeof(double)) +
+           (rows + 1) * sizeof(int) + 2 * slots * sizeof(int) +
+           ((size_t)b->block_particle[b->block_count] + 1) * sizeof(int);
+}
+
+/* B_s of stabilization point p (particle L) into index/gradient, from the
+ * quadrature's row B_s - B_L and the nodal row B_L (both ascending):
+ * (B_s - B_L) + B_L, leaving out the entries that come out exactly zero
+ * (those of B_L alone). Returns the entry count. */
+static int subcell_row(const struct gsn_shape_rows *g, int p, int L, int *index,
+                       double *gradient)
+{
+    int count = 0, l = g->offset[L], l1 = g->offset[L + 1];
+    for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
+        int particle = g->index[k];
+        double v[3] = {g->gradient[3 * (size_t)k],
+                       g->gradient[3 * (size_t)k + 1],
+                       g->gradient[3 * (size_t)k + 2]};
+        while (l < l1 && g->index[l] < particle)
+            ++l;
+        if (l < l1 && g->index[l] == particle)
+            for (int j = 0; j < 3; ++j)
+                v[j] += g->gradient[3 * (size_t)l + j];
+        if (v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0)
+            continue;
+        if (index) {
+            index[count] = particle;
+            memcpy(&gradient[3 * (size_t)count], v, sizeof v);
+        }
+        ++count;
     }
-    b->block_count = count;
-    b->block_point = malloc(sizeof(int) * (size_t)(count + 1));
-    b->block_slot = calloc((size_t)count + 1, sizeof(int));
-    GSN_CHECK(b->block_point && b->block_slot, GSN_ERR_MEMORY, "out of memory");
-    int at = 0;
-    for (int start = 0; start < point_count; ++at) {
-        int end = start + block_size;
-        if (start < split && end > split)
-            end = split;
-        b->block_point[at] = start;
-        if (start < split)
-            b->main_block_count = at + 1;
-        start = end < point_count ? end : point_count;
+    return count;
+}
+
+static int compare_int(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
+/* The blocks and the length of every packed row. */
+static int cut_blocks(struct gsn_point_blocks *b,
+                      const struct gsn_quadrature *q, int block_particles)
+{
+    const struct gsn_shape_rows *g = &q->gradient;
+    int n = q->particle_count, S = b->subcells;
+    b->block_count = (n + block_particles - 1) / block_particles;
+    b->block_particle = malloc(sizeof(int) * ((size_t)b->block_count + 1));
+    b->block_slot = calloc((size_t)b->block_count + 1, sizeof(int));
+    b->row_start = malloc(sizeof(int) * ((size_t)n * (1 + (size_t)S) + 1));
+    GSN_CHECK(b->block_particle && b->block_slot && b->row_start,
+              GSN_ERR_MEMORY, "out of memory");
+    for (int k = 0; k <= b->block_count; ++k)
+        b->block_particle[k] =
+            k * block_particles < n ? k * block_particles : n;
+    int64_t entries = 0;
+    b->row_start[0] = 0;
+    for (int k = 0; k < b->block_count; ++k) {
+        int p0 = b->block_particle[k], p1 = b->block_particle[k + 1];
+        if (p1 - p0 > b->max_block_particles)
+            b->max_block_particles = p1 - p0;
+        for (int L = p0; L < p1; ++L) {
+            entries += g->offset[L + 1] - g->offset[L];
+            b->row_start[gsn_point_blocks_main_row(b, k, L) + 1] = (int)entries;
+        }
+        for (int L = p0; L < p1; ++L)
+            for (int s = 0; s < S; ++s) {
+                entries += subcell_row(g, n + S * L + s, L, NULL, NULL);
+                b->row_start[gsn_point_blocks_subcell_row(b, k, L, s) + 1] =
+                    (int)entries;
+            }
+        GSN_CHECK(entries < INT32_MAX, GSN_ERR_INPUT,
+                  "more than %d gradient entries", INT32_MAX);
     }
-    b->block_point[count] = point_count;
     return GSN_OK;
 }
 
-/* Slots of every block: the distinct particles of its rows, ascending. */
-static int build_slots(struct gsn_point_blocks *b,
-                       const struct gsn_shape_rows *rows, int particle_count)
+/* Copies the rows of block k into the stream, their particle indices into
+ * particle (one per entry). */
+static void fill_block(struct gsn_point_blocks *b,
+                       const struct gsn_quadrature *q, int k, int *particle)
 {
-    size_t entries = (size_t)rows->offset[rows->row_count];
+    const struct gsn_shape_rows *g = &q->gradient;
+    int n = q->particle_count, S = b->subcells;
+    int p0 = b->block_particle[k], p1 = b->block_particle[k + 1];
+    for (int L = p0; L < p1; ++L) {
+        int r = gsn_point_blocks_main_row(b, k, L);
+        size_t at = (size_t)b->row_start[r],
+               count = (size_t)(g->offset[L + 1] - g->offset[L]);
+        memcpy(&particle[at], &g->index[g->offset[L]], count * sizeof(int));
+        memcpy(&b->entry_gradient[3 * at],
+               &g->gradient[3 * (size_t)g->offset[L]],
+               3 * count * sizeof(double));
+    }
+    for (int L = p0; L < p1; ++L)
+        for (int s = 0; s < S; ++s) {
+            size_t at =
+                (size_t)b->row_start[gsn_point_blocks_subcell_row(b, k, L, s)];
+            subcell_row(g, n + S * L + s, L, &particle[at],
+                        &b->entry_gradient[3 * at]);
+        }
+}
+
+/* Slots of every block: the distinct particles of its rows, ascending; the
+ * entries get their slot (GSN_ERR_INPUT if a block has more slots than
+ * entry_slot can hold). */
+static int build_slots(struct gsn_point_blocks *b, const int *particle,
+                       int particle_count)
+{
+    int rows = b->block_particle[b->block_count] * (1 + b->subcells);
+    size_t entries = (size_t)b->row_start[rows];
     int *mark = malloc(sizeof(int) * (size_t)(particle_count + 1));
     int *slot_of = malloc(sizeof(int) * (size_t)(particle_count + 1));
-    b->entry_slot = malloc(sizeof(int) * (entries ? entries : 1));
     b->slot_particle = malloc(sizeof(int) * (entries ? entries : 1));
     int rc = GSN_OK;
-    GSN_CHECK_GOTO(mark && slot_of && b->entry_slot && b->slot_particle, rc,
-                   GSN_ERR_MEMORY, done, "out of memory");
+    GSN_CHECK_GOTO(mark && slot_of && b->slot_particle, rc, GSN_ERR_MEMORY,
+                   done, "out of memory");
     for (int i = 0; i < particle_count; ++i)
         mark[i] = -1;
     int slots = 0;
     for (int k = 0; k < b->block_count; ++k) {
         int first = slots;
-        int e0 = rows->offset[b->block_point[k]];
-        int e1 = rows->offset[b->block_point[k + 1]];
+        int r0 = b->block_particle[k] * (1 + b->subcells);
+        int r1 = b->block_particle[k + 1] * (1 + b->subcells);
+        int e0 = b->row_start[r0], e1 = b->row_start[r1];
         for (int e = e0; e < e1; ++e) {
-            int particle = rows->index[e];
-            if (mark[particle] != k) {
-                mark[particle] = k;
-                b->slot_particle[slots++] = particle;
+            if (mark[particle[e]] != k) {
+                mark[particle[e]] = k;
+                b->slot_particle[slots++] = particle[e];
             }
         }
         /* Ascending particles within the block, for a predictable gather. */
         int count = slots - first;
-        for (int i = 1; i < count; ++i) {
-            int value = b->slot_particle[first + i], j = i;
-            while (j > 0 && b->slot_particle[first + j - 1] > value) {
-                b->slot_particle[first + j] = b->slot_particle[first + j - 1];
-                --j;
-            }
-            b->slot_particle[first + j] = value;
-        }
+        GSN_CHECK_GOTO(count <= GSN_POINT_BLOCKS_MAX_SLOTS, rc, GSN_ERR_INPUT,
+                       done, "block %d touches %d particles, more than %d", k,
+                       count, GSN_POINT_BLOCKS_MAX_SLOTS);
+        qsort(&b->slot_particle[first], (size_t)count, sizeof(int),
+              compare_int);
         for (int s = first; s < slots; ++s)
             slot_of[b->slot_particle[s]] = s - first;
         for (int e = e0; e < e1; ++e)
-            b->entry_slot[e] = slot_of[rows->index[e]];
+            b->entry_slot[e] = (uint16_t)slot_of[particle[e]];
         b->block_slot[k + 1] = slots;
         if (count > b->max_block_slots)
             b->max_block_slots = count;
     }
+    /* allocated for one slot an entry: keep what the slots use */
+    int *shrunk =
+        realloc(b->slot_particle, sizeof(int) * (size_t)(slots ? slots : 1));
+    if (shrunk)
+        b->slot_particle = shrunk;
 done:
     free(mark);
     free(slot_of);
@@ -120,23 +208,61 @@ static int build_particle_slots(struct gsn_point_blocks *b, int particle_count)
     return GSN_OK;
 }
 
-int gsn_point_blocks_create(const struct gsn_shape_rows *rows,
-                            int particle_count, int block_size, int split,
+/* The blocks of at most block_particles particles. */
+static int blocks_build(const struct gsn_quadrature *q, int block_particles,
+                        struct gsn_point_blocks *b)
+{
+    int n = q->particle_count;
+    b->subcells = n > 0 ? (q->point_count - n) / n : 0;
+    GSN_CALL(cut_blocks(b, q, block_particles));
+    size_t entries =
+        (size_t)b->row_start[(size_t)n * (1 + (size_t)b->subcells)];
+    int *particle = malloc(sizeof(int) * (entries ? entries : 1));
+    b->entry_slot = malloc(sizeof(uint16_t) * (entries ? entries : 1));
+    b->entry_gradient = malloc(3 * sizeof(double) * (entries ? entries : 1));
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(particle && b->entry_slot && b->entry_gradient, rc,
+                   GSN_ERR_MEMORY, done,
+                   "cannot allocate %zu packed gradient entries", entries);
+#pragma omp parallel for schedule(dynamic, 16)
+    for (int k = 0; k < b->block_count; ++k)
+        fill_block(b, q, k, particle);
+    GSN_CALL_GOTO(build_slots(b, particle, n), rc, done);
+    GSN_CALL_GOTO(build_particle_slots(b, n), rc, done);
+done:
+    free(particle);
+    return rc;
+}
+
+int gsn_point_blocks_create(const struct gsn_quadrature *q, int block_particles,
                             struct gsn_point_blocks **out)
 {
     *out = NULL;
-    GSN_CHECK(block_size > 0, GSN_ERR_INTERNAL, "block size %d", block_size);
-    struct gsn_point_blocks *b = calloc(1, sizeof *b);
-    GSN_CHECK(b, GSN_ERR_MEMORY, "out of memory");
-    int rc = GSN_OK;
-    GSN_CALL_GOTO(cut_blocks(b, rows->row_count, block_size, split), rc, fail);
-    GSN_CALL_GOTO(build_slots(b, rows, particle_count), rc, fail);
-    GSN_CALL_GOTO(build_particle_slots(b, particle_count), rc, fail);
-    *out = b;
-    return GSN_OK;
-fail:
-    gsn_point_blocks_destroy(&b);
-    return rc;
+    int n = q->particle_count;
+    GSN_CHECK(block_particles > 0, GSN_ERR_INTERNAL, "block size %d",
+              block_particles);
+    GSN_CHECK(q->main_point_count == n &&
+                  (q->point_count - n) % (n > 0 ? n : 1) == 0,
+              GSN_ERR_INTERNAL,
+              "%d points, %d nodal points, %d particles: not nodal points "
+              "with the same number of stabilization points per particle",
+              q->point_count, q->main_point_count, n);
+    /* Halve the blocks until every block fits the 16-bit slots (a block of
+     * one particle always does: 7 rows of at most GSN_RK_MAX_NEIGHBOURS). */
+    for (;;) {
+        struct gsn_point_blocks *b = calloc(1, sizeof *b);
+        GSN_CHECK(b, GSN_ERR_MEMORY, "out of memory");
+        int rc = blocks_build(q, block_particles, b);
+        if (rc == GSN_OK) {
+            *out = b;
+            return GSN_OK;
+        }
+        gsn_point_blocks_destroy(&b);
+        if (rc != GSN_ERR_INPUT || block_particles == 1)
+            GSN_CALL(rc);
+        gsn_error_clear();
+        block_particles /= 2;
+    }
 }
 
 void gsn_point_blocks_reduce(const struct gsn_point_blocks *blocks,
@@ -144,15 +270,7 @@ void gsn_point_blocks_reduce(const struct gsn_point_blocks *blocks,
                              double *force, int parallel)
 {
 #pragma omp parallel for if (parallel)
-    for (int i = 0; i < particle_count; ++i) {
-        double f[3] = {0.0, 0.0, 0.0};
-        for (int k = blocks->particle_slot_offset[i];
-             k < blocks->particle_slot_offset[i + 1]; ++k) {
-            const double *s = &slot_force[3 * blocks->particle_slot[k]];
-            f[0] += s[0];
-            f[1] += s[1];
-            f[2] += s[2];
-        }
-        memcpy(&force[3 * i], f, sizeof f);
-    }
+    for (int i = 0; i < particle_count; ++i)
+        gsn_point_blocks_reduce_one(blocks, i, slot_force,
+                                    &force[3 * (size_t)i]);
 }

@@ -1,16 +1,33 @@
 /* Gradient rows regrouped for one pass per step (issue 5, point 7).
  *
- * The points are cut into fixed blocks of consecutive points (the cut does
- * not depend on the thread count). Each block lists the particles its rows
- * touch (its slots), and every row entry carries its slot, so a block can
- * gather the displacement increments of its slots, compute its points'
- * stress, and scatter their forces P g into its own slots, reading the
- * gradients once. A reduction then adds the slots of every particle in
- * block order: the same sums, bit for bit, on any number of threads. */
+ * The particles are cut into fixed blocks of consecutive particles (the cut
+ * does not depend on the thread count). A block holds the nodal point of
+ * each of its particles and, with MSCNI, their stabilization points. Each
+ * block lists the particles its rows touch (its slots), and its rows are
+ * copied into one packed stream in block order, every entry with its slot
+ * and its three gradient components, so a block gathers the displacement
+ * increments of its slots, computes its points' stress, and scatters their
+ * forces P g into its own slots, reading its stretch of the stream once. A
+ * reduction then adds the slots of every particle in block order: the same
+ * sums, bit for bit, on any number of threads.
+ *
+ * Stabilization rows are stored as B_s alone, not as the quadrature's
+ * B_s - B_L (which holds the union of both supports, about twice the
+ * entries): the solver forms (B_s - B_L) d as B_s d - B_L d with the B_L d
+ * of the particle's nodal point, and folds the forces -B_L^T P_s of the
+ * sub-cells into the nodal point's P (docs/solver.md, "Speed"). B_s is
+ * recovered exactly where B_L has no entry, and to round-off elsewhere, as
+ * (B_s - B_L) + B_L; entries that come out exactly zero are left out. */
 #ifndef GEOSCNI_POINT_BLOCKS_H
 #define GEOSCNI_POINT_BLOCKS_H
 
 #include "geoscni/kernels.h"
+
+#include <stdint.h>
+
+/* Slots of one block at most: entry_slot is 16 bits (2 bytes an entry
+ * instead of 4, of the 26 the stream reads per entry). */
+#define GSN_POINT_BLOCKS_MAX_SLOTS 65536
 
 #ifdef __cplusplus
 extern "C" {
@@ -18,25 +35,68 @@ extern "C" {
 
 struct gsn_point_blocks {
     int block_count;
-    int main_block_count; /* blocks [0, this) hold the points before split */
-    int *block_point;     /* block_count + 1: the points of each block */
-    int *block_slot;      /* block_count + 1: the slots of each block */
-    int *slot_particle;   /* slots: the particle of each */
-    int *entry_slot;      /* gradient entries: the slot of each, in its block */
+    int subcells;        /* stabilization points per particle, or 0 */
+    int *block_particle; /* block_count + 1: the particles of each block */
+    int *block_slot;     /* block_count + 1: the slots of each block */
+    int *slot_particle;  /* slots: the particle of each */
+    /* Packed rows: block k holds the nodal rows of its particles p0..p1-1,
+     * then their stabilization rows (S per particle, in sub-cell order);
+     * row r has entries row_start[r] .. row_start[r+1]-1. */
+    int *row_start;            /* particles x (1 + subcells) + 1 */
+    uint16_t *entry_slot;      /* the slot of each entry, within its block */
+    double *entry_gradient;    /* 3 per entry: dPsi_I/dX_j, 1/m */
     int *particle_slot_offset; /* particles + 1 */
     int *particle_slot;        /* the slots of each particle, ascending */
     int max_block_slots;       /* the most slots of one block */
+    int max_block_particles;   /* the most particles of one block */
 };
 
-/* Cuts points [0, point_count) of the rows into blocks of at most
- * block_size points, with a cut also at split (main and stabilization
- * points apart). */
-int gsn_point_blocks_create(const struct gsn_shape_rows *rows,
-                            int particle_count, int block_size, int split,
+/* The packed row of nodal point L (block k holds L). */
+static inline int gsn_point_blocks_main_row(const struct gsn_point_blocks *b,
+                                            int k, int L)
+{
+    return b->block_particle[k] * (1 + b->subcells) +
+           (L - b->block_particle[k]);
+}
+
+/* The packed row of stabilization point s of particle L (block k holds L). */
+static inline int gsn_point_blocks_subcell_row(const struct gsn_point_blocks *b,
+                                               int k, int L, int s)
+{
+    int p0 = b->block_particle[k], p1 = b->block_particle[k + 1];
+    return p0 * (1 + b->subcells) + (p1 - p0) + b->subcells * (L - p0) + s;
+}
+
+/* Packs the gradient rows of q (nodal points [0, main) = particles, and
+ * main + S L + s the stabilization points) into blocks of at most
+ * block_particles particles. */
+int gsn_point_blocks_create(const struct gsn_quadrature *q, int block_particles,
                             struct gsn_point_blocks **out);
 
 /* Frees; NULL-safe, nulls the handle. */
 void gsn_point_blocks_destroy(struct gsn_point_blocks **blocks);
+
+/* Bytes of the packed rows and slot tables. */
+size_t gsn_point_blocks_bytes(const struct gsn_point_blocks *blocks);
+
+/* force_i (3) = sum over the slots of particle i of slot_force (slots x 3),
+ * in slot order. */
+static inline void gsn_point_blocks_reduce_one(const struct gsn_point_blocks *b,
+                                               int i, const double *slot_force,
+                                               double force[3])
+{
+    double f[3] = {0.0, 0.0, 0.0};
+    for (int k = b->particle_slot_offset[i]; k < b->particle_slot_offset[i + 1];
+         ++k) {
+        const double *s = &slot_force[3 * (size_t)b->particle_slot[k]];
+        f[0] += s[0];
+        f[1] += s[1];
+        f[2] += s[2];
+    }
+    force[0] = f[0];
+    force[1] = f[1];
+    force[2] = f[2];
+}
 
 /* force_I = sum over the slots of I of slot_force (slots x 3), in slot
  * order. OpenMP over particles when worth it. */
