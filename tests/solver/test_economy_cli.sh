@@ -24,7 +24,7 @@ else
         fail "no note on the damage pictures: $(cat "$out/half.log")"
     grep -q "no clip pictures: the results hold no 'equivalent_stress'" "$out/half.log" ||
         fail "no note on the stress picture: $(cat "$out/half.log")"
-    [ -s "$out/half/pictures/clip_uz_frame_0005.png" ] ||
+    [ -s "$(ls "$out"/half/pictures/clip_uz_frame_*.png 2>/dev/null | tail -1)" ] ||
         fail "the u_z picture of the displacement that was written is missing"
     [ -e "$out/half/pictures/damage_frame_0000.png" ] &&
         fail "a damage picture without damage"
@@ -34,9 +34,10 @@ fi
 
 "$geoscni" run cases/economy_box.yaml -o "$out/whole" --no-pictures -q ||
     fail "run economy_box"
-# top_fz of the last row: the whole box's against twice the half's. The two
-# meshes differ and the last rows lie 0.5 ms apart (the stable steps
-# differ): they agree to 2 %. 5 % catches a wrong factor; the plane itself
+# top_fz of the last row: the whole box's against twice the half's, loaded
+# quasi-statically (ramp and damping; a sudden load left a wave whose phase
+# at the last row differed by mesh, 2 % to 5 % on gmsh's non-reproducible
+# meshes). The two meshes differ: they agree to about 1 %. 5 % catches a wrong factor; the plane itself
 # is checked by check_economy.py (u_x on it), because in this load case the
 # force without the plane is only 1 % lower.
 force() {
