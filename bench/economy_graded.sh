@@ -8,9 +8,9 @@
 # difference relative to the uniform case's, and the wall-time ratio
 # graded / uniform.
 # Usage: bench/economy_graded.sh [BUILD_DIR] [END] [UNIFORM_CASE] [GRADED_CASE]
-#        (default build, 15, geometries/slope_I_coarse.yaml,
+#        (default build, 3.5, geometries/slope_I_coarse.yaml,
 #        geometries/slope_I_graded_coarse.yaml; the paper-resolution run:
-#        bench/economy_graded.sh build 100 geometries/slope_I.yaml
+#        bench/economy_graded.sh build 100.5 geometries/slope_I.yaml
 #        geometries/slope_I_graded.yaml)
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -24,31 +24,7 @@ geoscni=$root/$build/bin/geoscni
 work=${WORK:-$(mktemp -d /tmp/geoscni_economy_graded.XXXXXX)}
 mkdir -p "$work"
 
-# run NAME CASE: the case cut to END s, pre + solve; prints the wall time.
-run() {
-    sed -e "s|^geometry: *|geometry: $(cd "$(dirname "$2")" && pwd)/|" \
-        -e "s|^\( *end:\).*|\1 $end|" \
-        -e "s|^\( *every:\).*|\1 $(echo "$end" | awk '{print $1 / 50}')|" \
-        "$2" >"$work/$1.yaml"
-    start=$(date +%s.%N)
-    "$geoscni" pre "$work/$1.yaml" -o "$work/$1" >"$work/$1.pre.log"
-    OMP_WAIT_POLICY=passive "$geoscni" solve "$work/$1.yaml" -o "$work/$1" \
-        -j "$threads" >"$work/$1.log" 2>&1
-    stop=$(date +%s.%N)
-    echo "$start $stop" | awk '{printf "%.1f", $2 - $1}'
-}
-
-# peak NAME: the largest |footing_fz| of the history in MN and the
-# settlement where it occurs.
-peak() {
-    awk -F, '
-        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_fz") f = i; if ($i == "footing_uz") u = i } next }
-        { v = $f < 0 ? -$f : $f; if (v > best) { best = v; at = -$u } }
-        END { printf "%.4f %.4f", best / 1e6, at }' "$work/$1/history.csv"
-}
-
-particles() { grep '^solver:' "$work/$1.log" | sed 's/solver: \([0-9]*\) particles.*/\1/'; }
-step() { grep '^time step:' "$work/$1.log" | sed 's/time step: \([0-9.e+-]*\) s.*/\1/'; }
+. "$root/bench/economy_common.sh"
 
 echo "economy_graded: time.end $end s, $threads threads, $(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg), work in $work"
 t_uniform=$(run uniform "$uniform")

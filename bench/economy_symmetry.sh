@@ -7,9 +7,9 @@
 # the force on half the footing), the difference of the peaks relative to the
 # whole slope's, and the wall-time ratio half / whole.
 # Usage: bench/economy_symmetry.sh [BUILD_DIR] [END] [WHOLE_CASE] [HALF_CASE]
-#        (default build, 10, geometries/slope_II_coarse.yaml,
+#        (default build, 2.5, geometries/slope_II_coarse.yaml,
 #        geometries/slope_II_half_coarse.yaml; the paper-resolution run:
-#        bench/economy_symmetry.sh build 100 geometries/slope_II.yaml
+#        bench/economy_symmetry.sh build 100.5 geometries/slope_II.yaml
 #        geometries/slope_II_half.yaml)
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -23,34 +23,13 @@ geoscni=$root/$build/bin/geoscni
 work=${WORK:-$(mktemp -d /tmp/geoscni_economy_symmetry.XXXXXX)}
 mkdir -p "$work"
 
-# run NAME CASE: the case cut to END s, pre + solve; prints the wall time.
-run() {
-    sed -e "s|^geometry: *|geometry: $(cd "$(dirname "$2")" && pwd)/|" \
-        -e "s|^\( *end:\).*|\1 $end|" \
-        -e "s|^\( *every:\).*|\1 $(echo "$end" | awk '{print $1 / 50}')|" \
-        "$2" >"$work/$1.yaml"
-    start=$(date +%s.%N)
-    "$geoscni" pre "$work/$1.yaml" -o "$work/$1" -q
-    OMP_WAIT_POLICY=passive "$geoscni" solve "$work/$1.yaml" -o "$work/$1" \
-        -j "$threads" >"$work/$1.log" 2>&1
-    stop=$(date +%s.%N)
-    echo "$start $stop" | awk '{printf "%.1f", $2 - $1}'
-}
-
-# peak NAME FACTOR: the largest |footing_fz| of the history times FACTOR,
-# in MN, and the settlement where it occurs.
-peak() {
-    awk -F, -v factor="$2" '
-        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_fz") f = i; if ($i == "footing_uz") u = i } next }
-        { v = ($f < 0 ? -$f : $f) * factor; if (v > best) { best = v; at = -$u } }
-        END { printf "%.4f %.4f", best / 1e6, at }' "$work/$1/history.csv"
-}
+. "$root/bench/economy_common.sh"
 
 echo "economy_symmetry: time.end $end s, $threads threads, $(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg), work in $work"
 t_whole=$(run whole "$whole")
 t_half=$(run half "$half")
-n_whole=$(grep '^solver:' "$work/whole.log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
-n_half=$(grep '^solver:' "$work/half.log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
+n_whole=$(particles whole)
+n_half=$(particles half)
 set -- $(peak whole 1)
 p_whole=$1 u_whole=$2
 set -- $(peak half 2)

@@ -1,0 +1,28 @@
+# Shared by bench/economy_graded.sh and bench/economy_symmetry.sh (sourced):
+# needs $geoscni, $work, $end and $threads.
+
+# run NAME CASE: the case cut to END s, pre + solve; prints the wall time.
+run() {
+    sed -e "s|^geometry: *|geometry: $(cd "$(dirname "$2")" && pwd)/|" \
+        -e "s|^\( *end:\).*|\1 $end|" \
+        -e "s|^\( *every:\).*|\1 $(echo "$end" | awk '{print $1 / 50}')|" \
+        "$2" >"$work/$1.yaml"
+    start=$(date +%s.%N)
+    "$geoscni" pre "$work/$1.yaml" -o "$work/$1" >"$work/$1.pre.log"
+    OMP_WAIT_POLICY=passive "$geoscni" solve "$work/$1.yaml" -o "$work/$1" \
+        -j "$threads" >"$work/$1.log" 2>&1
+    stop=$(date +%s.%N)
+    echo "$start $stop" | awk '{printf "%.1f", $2 - $1}'
+}
+
+# peak NAME [FACTOR]: the largest |footing_fz| of the history times FACTOR
+# (default 1), in MN, and the settlement where it occurs.
+peak() {
+    awk -F, -v factor="${2:-1}" '
+        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_fz") f = i; if ($i == "footing_uz") u = i } next }
+        { v = ($f < 0 ? -$f : $f) * factor; if (v > best) { best = v; at = -$u } }
+        END { printf "%.4f %.4f", best / 1e6, at }' "$work/$1/history.csv"
+}
+
+particles() { grep '^solver:' "$work/$1.log" | sed 's/solver: \([0-9]*\) particles.*/\1/'; }
+step() { grep '^time step:' "$work/$1.log" | sed 's/time step: \([0-9.e+-]*\) s.*/\1/'; }
