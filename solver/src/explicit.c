@@ -71,8 +71,7 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
                         e->piola,
                         e->point_energy,
                         e->thread_work,
-                        e->damping_force,
-                        e->stiffness_ratio};
+                        e->damping_force};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         free(arrays[i]);
     free(e->point_failed);
@@ -280,7 +279,6 @@ int gsn_explicit_create(const struct gsn_model *m,
         {(void **)&e->point_energy, points, sizeof(double)},
         {(void **)&e->point_failed, points, sizeof(int)},
         {(void **)&e->damping_force, n3, sizeof(double)},
-        {(void **)&e->stiffness_ratio, main, sizeof(double)},
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         GSN_CALL_GOTO(
@@ -453,9 +451,10 @@ static double elastic_share(const double deps[6], double plastic_increment)
 /* Nodal points [p0, p1) with their increments dH (9 each, from p0):
  * F_{n+1} = I + H + dH, the incremental gradient on the mid-step
  * configuration G = dH (I + H + dH/2)^-1, the objective update with the
- * material (Fig. 3), the work sigma : d eps and P. */
+ * material (Fig. 3), the work sigma : d eps, P, and each point's elastic
+ * share of the step (share, from p0) for its stabilization points. */
 static int main_chunk(struct gsn_explicit *e, int p0, int p1,
-                      const double *dH_block, double *work)
+                      const double *dH_block, double *work, double *share)
 {
     const double *w = e->quadrature->point_weight;
     double *G = work, *deps = G + 9 * CHUNK, *old = deps + 6 * CHUNK;
@@ -501,7 +500,7 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
         double mean[6], F1[9];
         for (int a = 0; a < 6; ++a)
             mean[a] = 0.5 * (old[6 * b + a] + e->stress[6 * p + a]);
-        e->stiffness_ratio[p] =
+        share[b] =
             e->plastic_offset < 0
                 ? 1.0
                 : elastic_share(
@@ -540,7 +539,7 @@ static void elastic_piola(const double sigma[6], double w, double P[9])
  * P. */
 static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
                                 const double *u4, const double dH_L[9],
-                                double fold[9], double *f4)
+                                double share, double fold[9], double *f4)
 {
     const struct gsn_quadrature *q = e->quadrature;
     const struct gsn_point_blocks *b = e->blocks;
@@ -549,18 +548,14 @@ static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
     if (b->row_start[r] == b->row_start[r + 1])
         return; /* an empty sub-cell: weight 0, no entries */
     double w = q->point_weight[p];
-    double *H = &e->displacement_gradient[9 * p];
     double dH[9], deps[6], rate[6], sigma[6], mean[6], P[9];
     row_gradient(b, r, u4, dH);
-    for (int a = 0; a < 9; ++a) {
+    for (int a = 0; a < 9; ++a)
         dH[a] -= dH_L[a];
-        H[a] += dH[a];
-    }
     gsn_matrix_sym_to_voigt(dH, deps);
     elastic_stress(e->bulk_modulus, e->shear_modulus, deps, rate);
-    double ratio = e->stiffness_ratio[L];
     for (int a = 0; a < 6; ++a)
-        sigma[a] = e->stress[6 * p + a] + ratio * rate[a];
+        sigma[a] = e->stress[6 * p + a] + share * rate[a];
     for (int a = 0; a < 6; ++a)
         mean[a] = 0.5 * (e->stress[6 * p + a] + sigma[a]);
     memcpy(&e->stress[6 * p], sigma, sizeof sigma);
@@ -572,11 +567,12 @@ static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
 }
 
 /* Per-thread work of one block: u and forces (4 per slot), the nodal
- * increments and folded P (9 per particle), and a chunk's material work. */
+ * increments and folded P (9 per particle), the elastic shares (1 per
+ * particle), and a chunk's material work. */
 static size_t block_work_size(const struct gsn_point_blocks *b)
 {
     size_t size = 8 * (size_t)b->max_block_slots +
-                  18 * (size_t)b->max_block_particles + CHUNK_WORK;
+                  19 * (size_t)b->max_block_particles + CHUNK_WORK;
     return (size + 7) / 8 * 8; /* whole cache lines per thread */
 }
 
@@ -623,21 +619,22 @@ static int block_step(struct gsn_explicit *e, int k)
     double *u4 = block_work(e), *f4 = u4 + 4 * (size_t)b->max_block_slots;
     double *dH = f4 + 4 * (size_t)b->max_block_slots;
     double *fold = dH + 9 * (size_t)b->max_block_particles;
-    double *work = fold + 9 * (size_t)b->max_block_particles;
+    double *share = fold + 9 * (size_t)b->max_block_particles;
+    double *work = share + (size_t)b->max_block_particles;
     block_gather(e, k, e->displacement, e->previous_displacement, u4);
     memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
     memset(&e->point_failed[p0], 0, sizeof(int) * (size_t)(p1 - p0));
     for (int L = p0; L < p1; ++L)
         row_gradient(b, gsn_point_blocks_main_row(b, k, L), u4,
                      &dH[9 * (L - p0)]);
-    if (main_chunk(e, p0, p1, dH, work) != GSN_OK)
+    if (main_chunk(e, p0, p1, dH, work, share) != GSN_OK)
         return GSN_ERR_NUMERICAL;
     memcpy(fold, &e->piola[9 * (size_t)p0],
            sizeof(double) * 9 * (size_t)(p1 - p0));
     for (int L = p0; L < p1; ++L)
         for (int s = 0; s < S; ++s)
             stabilization_point(e, k, L, s, u4, &dH[9 * (L - p0)],
-                                &fold[9 * (L - p0)], f4);
+                                share[L - p0], &fold[9 * (L - p0)], f4);
     for (int L = p0; L < p1; ++L)
         row_scatter(b, gsn_point_blocks_main_row(b, k, L), &fold[9 * (L - p0)],
                     f4);

@@ -89,13 +89,12 @@ struct gsn_explicit {
     int thread_count;
     struct gsn_point_blocks *blocks; /* the rows cut for one pass a step */
     double *slot_force;              /* slots x 3: forces of each block */
-    double *displacement_gradient;   /* points x 9: H = F - I at t_n */
+    double *displacement_gradient;   /* points x 9: H = F - I at t_n at the
+                                        nodal points (the rows of the
+                                        stabilization points stay zero: their
+                                        stress is integrated as a rate) */
     int skip_boundary_term;          /* 1: leave out the boundary term (negative
                                         control of the patch test only) */
-    double *stiffness_ratio;         /* main points: the elastic share of the
-                                        step's strain increment, in [0, 1]
-                                        (scales the stabilization of their
-                                        sub-cells) */
     int plastic_offset;              /* equivalent_plastic_strain in the
                                         state, -1 without plasticity */
     int *boundary_point_mask;        /* constrained components at each boundary
