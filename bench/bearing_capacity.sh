@@ -7,29 +7,34 @@
 # Prints, per run, the pressure over c N_c at settlements of 2.5%, 5%,
 # 7.5%, 10% and 12.5% of the footing width B = 2 m, the largest, the
 # largest kinetic/internal energy ratio and the wall time; writes the rows
-# to OUT/bearing_capacity.csv.
+# to OUT/bearing_capacity.csv. KINEMATICS: small (the case's, the theory
+# of the limit load) and/or large (the paper's updated Lagrangian).
 # Usage: bench/bearing_capacity.sh [BUILD_DIR] [OUT] [SPACINGS] [METHODS]
-#        (default build, /tmp/geoscni_bearing, "0.2 0.1", "scni mscni")
+#                                  [KINEMATICS]
+#        (default build, /tmp/geoscni_bearing, "0.2 0.1", "scni mscni",
+#        "small large")
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-build}
 out=${2:-/tmp/geoscni_bearing}
 spacings=${3:-0.2 0.1}
 methods=${4:-scni mscni}
+kinematics_list=${5:-small large}
 geoscni=$root/$build/bin/geoscni
 [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
 mkdir -p "$out"
 csv=$out/bearing_capacity.csv
-echo "spacing,method,particles,q_2.5,q_5,q_7.5,q_10,q_12.5,q_max,kinetic_ratio,wall_s" >"$csv"
+echo "spacing,method,kinematics,particles,q_2.5,q_5,q_7.5,q_10,q_12.5,q_max,kinetic_ratio,wall_s" >"$csv"
 echo "strip footing, B = 2 m, q / (c N_c) at settlement / B = 2.5% 5% 7.5% 10% 12.5%, max ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
 for h in $spacings; do
     for method in $methods; do
+    for kinematics in $kinematics_list; do
         case $method in
         scni) integration="scni" ;;
         mscni) integration="{method: scni, stabilization: mscni}" ;;
         *) echo "unknown method $method (scni or mscni)" >&2; exit 2 ;;
         esac
-        run=$out/h${h}_$method
+        run=$out/h${h}_${method}_$kinematics
         mkdir -p "$run"
         # 0.25 m of settlement (12.5% of B) at 0.1 m/s after a 0.5 s ramp.
         sed -e "s|^geometry: *|geometry: $root/geometries/|" \
@@ -38,6 +43,7 @@ for h in $spacings; do
             -e "s|velocity: \[null, null, -0.05\]|velocity: [null, null, -0.1]|" \
             -e "s|^\( *end:\).*|\1 2.75|" \
             -e "s|^\( *every:\).*|\1 0.025|" \
+            -e "s|^kinematics:.*|kinematics: $kinematics|" \
             "$root/geometries/strip_footing.yaml" >"$run/strip_footing.yaml"
         start=$(date +%s.%N)
         "$geoscni" pre "$run/strip_footing.yaml" -o "$run" -q
@@ -56,8 +62,9 @@ for h in $spacings; do
               prev_s = s; prev_q = q }
             END { printf "%.3f,%.3f,%.3f,%.3f,%.3f,%.3f", at[1], at[2], at[3], at[4], at[5], max }' \
             "$run/history.csv")
-        echo "$h,$method,$particles,$row,$ratio,$wall" >>"$csv"
-        echo "  h = $h m ($(echo "$h" | awk '{print 2 / $1}') spacings across B), $method, $particles particles: $row (q/cNc), kinetic/internal <= $ratio, $wall s"
+        echo "$h,$method,$kinematics,$particles,$row,$ratio,$wall" >>"$csv"
+        echo "  h = $h m ($(echo "$h" | awk '{print 2 / $1}') spacings across B), $method, $kinematics kinematics, $particles particles: $row (q/cNc), kinetic/internal <= $ratio, $wall s"
+    done
     done
 done
 echo "rows: $csv"

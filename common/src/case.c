@@ -747,6 +747,22 @@ static int read_damping(struct reader *r, const yaml_node_t *root,
     return GSN_OK;
 }
 
+/* kinematics: large (the paper's updated Lagrangian, default) or small
+ * (gradients and forces on the reference configuration, no rotation: the
+ * small-strain theory that limit loads are derived in; docs/solver.md). */
+static int read_kinematics(struct reader *r, const yaml_node_t *root,
+                           struct gsn_case *c)
+{
+    static const char *const kinds[] = {"large", "small", NULL};
+    yaml_node_t *node = mapping_find(r, root, "kinematics");
+    if (!node)
+        return GSN_OK;
+    int index = 0;
+    GSN_CALL(parse_word(r, node, "kinematics", kinds, &index));
+    c->small_strain = index == 1;
+    return GSN_OK;
+}
+
 static int read_output(struct reader *r, const yaml_node_t *root,
                        struct gsn_case *c)
 {
@@ -793,7 +809,7 @@ static int read_document(struct reader *r, struct gsn_case *c)
     static const char *const keys[] = {"geometry",    "particles", "kernel",
                                        "integration", "material",  "gravity",
                                        "boundary",    "time",      "damping",
-                                       "output",      NULL};
+                                       "kinematics",  "output",    NULL};
     yaml_node_t *root = yaml_document_get_root_node(&r->document);
     GSN_CHECK(root != NULL, GSN_ERR_INPUT,
               "%s:1: the case file is empty; expected a mapping with "
@@ -809,6 +825,7 @@ static int read_document(struct reader *r, struct gsn_case *c)
     GSN_CALL(read_boundary(r, root, c));
     GSN_CALL(read_time(r, root, c));
     GSN_CALL(read_damping(r, root, c));
+    GSN_CALL(read_kinematics(r, root, c));
     GSN_CALL(read_output(r, root, c));
     return GSN_OK;
 }
@@ -998,6 +1015,7 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
                 c->time_step);
     fprintf(out, ", ramp: %.17g}\n", c->time_ramp);
     fprintf(out, "damping: {local: %.17g}\n", c->damping_local);
+    fprintf(out, "kinematics: %s\n", c->small_strain ? "small" : "large");
     fprintf(out, "output: {every: %.17g", c->output_every);
     write_output_economy(c, out);
     fputs("}\n", out);

@@ -253,6 +253,7 @@ int gsn_explicit_create(const struct gsn_model *m,
     e->shear_modulus = c->material.shear_modulus;
     e->dt = dt;
     e->damping_local = c->damping_local;
+    e->small_strain = c->small_strain;
     e->thread_count = omp_get_max_threads();
     size_t n3 = 3 * (size_t)e->particle_count;
     size_t points = (size_t)e->point_count;
@@ -361,6 +362,17 @@ static void point_piola(const double F[9], const double sigma[6], double w,
                  S[3 * i + 2] * Finv[3 * j + 2]);
 }
 
+static inline double identity_entry(int a) { return a % 4 == 0 ? 1.0 : 0.0; }
+
+/* The F of the internal force (eq. 29): I + H, or I for kinematics: small
+ * (forces on the reference configuration). */
+static void force_gradient(const struct gsn_explicit *e, const double H[9],
+                           double F[9])
+{
+    for (int a = 0; a < 9; ++a)
+        F[a] = identity_entry(a) + (e->small_strain ? 0.0 : H[a]);
+}
+
 static double voigt_contract(const double a[6], const double b[6])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] +
@@ -467,19 +479,28 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
         const double *dH = &dH_block[9 * b];
         double F1[9], Fmid[9], Fmid_inv[9];
         for (int a = 0; a < 9; ++a) {
-            double identity = (a % 4 == 0) ? 1.0 : 0.0;
             Hnew[9 * b + a] = H[a] + dH[a];
-            F1[a] = identity + Hnew[9 * b + a];
-            Fmid[a] = identity + H[a] + 0.5 * dH[a];
+            F1[a] = identity_entry(a) + Hnew[9 * b + a];
+            Fmid[a] = identity_entry(a) + H[a] + 0.5 * dH[a];
         }
         Jmid[b] = gsn_matrix_inverse(Fmid, Fmid_inv);
         double J1 = gsn_matrix_determinant(F1);
-        if (!(J1 > 0.0) || !(Jmid[b] > 0.0) || !isfinite(J1)) {
+        /* Small strain has no volume to invert: only a non-number fails. */
+        if (e->small_strain ? !isfinite(J1)
+                            : !(J1 > 0.0) || !(Jmid[b] > 0.0) || !isfinite(J1)) {
             e->point_failed[p] = 1;
             failed = 1;
             continue;
         }
-        gsn_matrix_multiply(dH, Fmid_inv, &G[9 * b]);
+        if (e->small_strain) {
+            /* Small strain: G = sym dH, no rotation, reference volume. */
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                    G[9 * b + 3 * i + j] = 0.5 * (dH[3 * i + j] + dH[3 * j + i]);
+            Jmid[b] = 1.0;
+        } else {
+            gsn_matrix_multiply(dH, Fmid_inv, &G[9 * b]);
+        }
         memcpy(&old[6 * b], &e->stress[6 * p], 6 * sizeof(double));
         if (e->plastic_offset >= 0)
             old_plastic[b] =
@@ -512,8 +533,7 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
             voigt_contract(mean, &deps[6 * b]) * Jmid[b] * w[p];
         memcpy(&e->displacement_gradient[9 * p], &Hnew[9 * b],
                9 * sizeof(double));
-        for (int a = 0; a < 9; ++a)
-            F1[a] = ((a % 4 == 0) ? 1.0 : 0.0) + Hnew[9 * b + a];
+        force_gradient(e, &Hnew[9 * b], F1);
         point_piola(F1, &e->stress[6 * p], w[p], &e->piola[9 * p]);
     }
     return GSN_OK;
@@ -698,8 +718,7 @@ static int report_failure(const struct gsn_explicit *e, const char *what)
         const double *x = &q->point_position[3 * p];
         double F[9];
         for (int a = 0; a < 9; ++a)
-            F[a] = ((a % 4 == 0) ? 1.0 : 0.0) +
-                   e->displacement_gradient[9 * p + a];
+            F[a] = identity_entry(a) + e->displacement_gradient[9 * p + a];
         double J = gsn_matrix_determinant(F);
         return gsn_error_raise(
             GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
@@ -721,9 +740,7 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
         double *P = &e->piola[9 * p];
         if (p < e->main_point_count) {
             double F[9];
-            for (int a = 0; a < 9; ++a)
-                F[a] = ((a % 4 == 0) ? 1.0 : 0.0) +
-                       e->displacement_gradient[9 * p + a];
+            force_gradient(e, &e->displacement_gradient[9 * p], F);
             point_piola(F, &e->stress[6 * p], w[p], P);
         } else {
             gsn_voigt_to_matrix(&e->stress[6 * p], P);

@@ -93,6 +93,8 @@ struct gsn_explicit {
                                         nodal points (the rows of the
                                         stabilization points stay zero: their
                                         stress is integrated as a rate) */
+    int small_strain;                /* kinematics: small: F = I in the
+                                        forces, G = sym dH (case.h) */
     int skip_boundary_term;          /* 1: leave out the boundary term (negative
                                         control of the patch test only) */
     int plastic_offset;              /* equivalent_plastic_strain in the

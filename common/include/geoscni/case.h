@@ -107,6 +107,7 @@ struct gsn_case {
     double time_ramp;        /* s over which prescribed velocities rise
                                 smoothly from 0 (0: at once) */
     double damping_local;    /* Cundall's local damping coefficient (0: none) */
+    int small_strain;        /* kinematics: small (no geometry update) */
     double output_every;     /* s between frames */
     /* economy (docs/economy.md) */
     int refinement_count;

@@ -1,0 +1,46 @@
+#!/bin/sh
+# Bearing capacity of a smooth rigid strip footing (issue 7, point 2;
+# docs/failure.md, section 5): geometries/strip_footing.yaml as it is
+# (half the footing, B = 2 m = 10 spacings, MSCNI, weightless soil with
+# the paper's Drucker-Prager, associated flow, small-strain kinematics),
+# pushed at 0.1 m/s to 12.5% of B. Prandtl-Reissner with the plane-strain
+# match of the cone gives c N_c = 1.0568 MPa (REFERENCES.md).
+# Checks: the pressure at 10% and 12.5% of B within +0 to +10% of c N_c
+# (the issue's bound at 10 spacings: a displacement method over-estimates
+# a limit load, by less as the spacing shrinks; measured +2.9%); a plateau
+# (the two within 1% of each other: the large-deformation curve rises by
+# 8% between them, docs/failure.md); kinetic energy below 1% of the
+# internal energy (quasi-static).
+# usage: test_bearing_capacity.sh GEOSCNI   (run from tests/solver)
+set -u
+geoscni=$1
+root=$(cd ../.. && pwd)
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+sed -e "s|^geometry: *|geometry: $root/geometries/|" \
+    -e "s|velocity: \[null, null, -0.05\]|velocity: [null, null, -0.1]|" \
+    -e "s|^\( *end:\).*|\1 2.75|" \
+    "$root/geometries/strip_footing.yaml" >"$out/strip_footing.yaml"
+grep -q "^kinematics: small" "$out/strip_footing.yaml" ||
+    { echo "FAIL: strip_footing.yaml is not the small-strain case"; exit 1; }
+"$geoscni" pre "$out/strip_footing.yaml" -o "$out" -q &&
+    "$geoscni" solve "$out/strip_footing.yaml" -o "$out" -q ||
+    { echo "FAIL: the run failed"; exit 1; }
+ratio=$(h5dump -a /kinetic_ratio_max "$out/results.h5" |
+    sed -n 's/.*(0): \(.*\)/\1/p' | head -1)
+# q / (c N_c) at settlements of 10% and 12.5% of B, interpolated between
+# rows; the footing area is b T = 1 m x 0.4 m (strip_footing.geo, T = 2h).
+awk -F, -v ratio="$ratio" '
+    NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_uz") u = i; if ($i == "footing_fz") f = i }; next }
+    { s = -$u / 2.0; q = -$f / 0.4 / 1.0568e6
+      for (k = 1; k <= 2; ++k) { t = 0.075 + 0.025 * k
+          if (!(k in at) && s >= t) at[k] = prev_q + (q - prev_q) * (t - prev_s) / (s - prev_s) }
+      prev_s = s; prev_q = q }
+    END {
+        printf "q/(c Nc) at 10%% of B %.4f, at 12.5%% %.4f; kinetic/internal <= %s\n", at[1], at[2], ratio
+        bad = 0
+        if (!(2 in at)) { print "FAIL: the run did not reach 12.5% of B"; exit 1 }
+        for (k = 1; k <= 2; ++k) if (!(at[k] >= 1.0 && at[k] <= 1.10)) { print "FAIL: outside +0 to +10% of c N_c"; bad = 1 }
+        if (!(at[2] - at[1] < 0.01 && at[1] - at[2] < 0.01)) { print "FAIL: no plateau (changes by more than 1% from 10% to 12.5% of B)"; bad = 1 }
+        if (!(ratio + 0 < 0.01)) { print "FAIL: not quasi-static"; bad = 1 }
+        exit bad }' "$out/history.csv"
