@@ -27,7 +27,10 @@ geoscni=$root/$build/bin/geoscni
 [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
 mkdir -p "$out"
 csv=$out/bearing_capacity.csv
-echo "spacing,method,kinematics,particles,q_2.5,q_5,q_7.5,q_10,q_12.5,q_max,kinetic_ratio,wall_s,status" >"$csv"
+# problem, cpu_s and error are the columns bench/accuracy_plot reads
+# (bench/bearing_chart.sh): error = |q at 12.5% of B / (c N_c) - 1|, cpu_s
+# the CPU time of the solve (pre left out).
+echo "spacing,method,kinematics,particles,q_2.5,q_5,q_7.5,q_10,q_12.5,q_max,kinetic_ratio,wall_s,status,problem,cpu_s,error" >"$csv"
 echo "strip footing, B = 2 m, q / (c N_c) at settlement / B = 2.5% 5% 7.5% 10% 12.5%, max ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
 for h in $spacings; do
     for method in $methods; do
@@ -35,7 +38,9 @@ for h in $spacings; do
         case $method in
         scni) integration="scni" ;;
         mscni) integration="{method: scni, stabilization: mscni}" ;;
-        *) echo "unknown method $method (scni or mscni)" >&2; exit 2 ;;
+        dni) integration="dni" ;;
+        gauss2 | gauss3) integration="{method: gauss, points: ${method#gauss}}" ;;
+        *) echo "unknown method $method (scni, mscni, dni, gauss2, gauss3)" >&2; exit 2 ;;
         esac
         run=$out/h${h}_${method}_$kinematics
         mkdir -p "$run"
@@ -52,10 +57,15 @@ for h in $spacings; do
         "$geoscni" pre "$run/strip_footing.yaml" -o "$run" -q
         # A run that stops (exit 3) keeps its rows; the note says where.
         note="" status=ok
-        "$geoscni" solve "$run/strip_footing.yaml" -o "$run" -q 2>"$run/solve.log" || {
+        /usr/bin/time -f "%U %S" -o "$run/cpu" \
+            "$geoscni" solve "$run/strip_footing.yaml" -o "$run" -q 2>"$run/solve.log" || {
             status=stopped
             note=" (stopped: $(grep -o 'step [0-9]*, t = [0-9.]* s' "$run/solve.log" | head -1))"; }
         wall=$(echo "$start $(date +%s.%N)" | awk '{printf "%.1f", $2 - $1}')
+        if [ ! -s "$run/history.csv" ]; then
+            echo "  h = $h m, $method, $kinematics kinematics: refused: $(grep -m1 'error' "$run/solve.log")"
+            continue
+        fi
         particles=$(h5ls "$run/model.h5/particles/position" |
             sed -n 's/.*{\([0-9]*\),.*/\1/p')
         ratio=$(h5dump -a /kinetic_ratio_max "$run/results.h5" 2>/dev/null |
@@ -69,7 +79,9 @@ for h in $spacings; do
               prev_s = s; prev_q = q }
             END { printf "%.3f,%.3f,%.3f,%.3f,%.3f,%.3f", at[1], at[2], at[3], at[4], at[5], max }' \
             "$run/history.csv")
-        echo "$h,$method,$kinematics,$particles,$row,$ratio,$wall,$status" >>"$csv"
+        cpu=$(tail -1 "$run/cpu" | awk '{printf "%.2f", $1 + $2}')
+        error=$(echo "$row" | awk -F, '{ e = $5 - 1; printf "%.5f", e < 0 ? -e : e }')
+        echo "$h,$method,$kinematics,$particles,$row,$ratio,$wall,$status,strip_footing_$kinematics,$cpu,$error" >>"$csv"
         echo "  h = $h m ($(echo "$h" | awk '{print 2 / $1}') spacings across B), $method, $kinematics kinematics, $particles particles: $row (q/cNc), kinetic/internal <= $ratio, $wall s$note"
     done
     done

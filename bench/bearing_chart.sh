@@ -1,0 +1,33 @@
+#!/bin/sh
+# The bearing-capacity chart (issue 7, point 1, the second chart): the
+# strip footing of bench/bearing_capacity.sh in small-strain kinematics at
+# several spacings with each integration, the error of the limit load
+# (|q at 12.5% of B / (c N_c) - 1|) against the CPU time of the solve on
+# log-log axes, the legend giving each method's rate against spacing
+# (drawn by bench/accuracy_plot, like the elastic chart). Runs that stop
+# before 12.5% of B are left off the chart and kept in the runs' CSV.
+# Usage: bench/bearing_chart.sh [BUILD_DIR] [OUT_DIR] [SPACINGS] [METHODS]
+#        (default build, docs/img, "0.4 0.286 0.2 0.133 0.1",
+#        "scni mscni dni gauss2 gauss3"); runs in $RUNS (default
+#        /tmp/geoscni_bearing_chart), one at a time on $THREADS threads
+#        (default 1).
+# Writes OUT_DIR/bearing_capacity.csv and OUT_DIR/bearing_capacity.png.
+set -eu
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-build}
+out=${2:-$root/docs/img}
+spacings=${3:-0.4 0.286 0.2 0.133 0.1}
+methods=${4:-scni mscni dni gauss2 gauss3}
+runs=${RUNS:-/tmp/geoscni_bearing_chart}
+plot=$root/$build/bin/accuracy_plot
+[ -x "$plot" ] || { echo "no $plot: build first" >&2; exit 2; }
+mkdir -p "$out"
+OMP_NUM_THREADS=${THREADS:-1} sh "$root/bench/bearing_capacity.sh" \
+    "$build" "$runs" "$spacings" "$methods" small
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "status") c = i }
+         NR == 1 || $c == "ok"' "$runs/bearing_capacity.csv" \
+    >"$out/bearing_capacity.csv"
+"$plot" "$out/bearing_capacity.csv" strip_footing_small \
+    "$out/bearing_capacity.png" \
+    "Strip footing, small strain: limit load against CPU time" \
+    "|q / (c N_c) - 1| at 12.5% of B"
