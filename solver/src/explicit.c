@@ -362,7 +362,10 @@ static void point_piola(const double F[9], const double sigma[6], double w,
                  S[3 * i + 2] * Finv[3 * j + 2]);
 }
 
-static inline double identity_entry(int a) { return a % 4 == 0 ? 1.0 : 0.0; }
+static inline double identity_entry(int a)
+{
+    return a % 4 == 0 ? 1.0 : 0.0;
+}
 
 /* The F of the internal force (eq. 29): I + H, or I for kinematics: small
  * (forces on the reference configuration). */
@@ -486,8 +489,9 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
         Jmid[b] = gsn_matrix_inverse(Fmid, Fmid_inv);
         double J1 = gsn_matrix_determinant(F1);
         /* Small strain has no volume to invert: only a non-number fails. */
-        if (e->small_strain ? !isfinite(J1)
-                            : !(J1 > 0.0) || !(Jmid[b] > 0.0) || !isfinite(J1)) {
+        if (e->small_strain
+                ? !isfinite(J1)
+                : !(J1 > 0.0) || !(Jmid[b] > 0.0) || !isfinite(J1)) {
             e->point_failed[p] = 1;
             failed = 1;
             continue;
@@ -496,7 +500,8 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
             /* Small strain: G = sym dH, no rotation, reference volume. */
             for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j)
-                    G[9 * b + 3 * i + j] = 0.5 * (dH[3 * i + j] + dH[3 * j + i]);
+                    G[9 * b + 3 * i + j] =
+                        0.5 * (dH[3 * i + j] + dH[3 * j + i]);
             Jmid[b] = 1.0;
         } else {
             gsn_matrix_multiply(dH, Fmid_inv, &G[9 * b]);
