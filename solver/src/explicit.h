@@ -105,6 +105,16 @@ struct gsn_explicit {
      * boundary point q, in boundary point order. */
     int *boundary_entry_offset, *boundary_entry_point;
     double *boundary_entry_value;
+    /* The main points of each particle's nodal domain (offset particles
+     * + 1), what the particle reports of the points' stress and state and
+     * what the boundary term reads: nodal integration, the particle's own
+     * nodal point; Gauss, the points nearest to the particle (among those
+     * its kernel covers, so the points of its nodal domain) or, where there
+     * are none, the one point nearest to it. domain_weight: the sum of
+     * their weights, m^3. */
+    int *domain_offset, *domain_point;
+    double *domain_weight;
+    int *point_owner; /* main points: the particle whose domain holds it */
 };
 
 /* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped
@@ -159,9 +169,16 @@ void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
 void gsn_explicit_particle_field(const struct gsn_explicit *e,
                                  const double *coefficients, double *out);
 
-/* Stress at the particles (n x 6): the stress of each particle's nodal
- * point. */
+/* Stress at the particles (n x 6, Pa): the weighted mean stress of the
+ * points of each particle's nodal domain (explicit.h, domain_point): the
+ * nodal point's own stress with nodal integration. */
 void gsn_explicit_particle_stress(const struct gsn_explicit *e, double *out);
+
+/* Material state variable `offset` at the particles (n), the same weighted
+ * mean over each nodal domain as the stress (damage, equivalent plastic
+ * strain: a convex combination, so it stays in their ranges). */
+void gsn_explicit_particle_state(const struct gsn_explicit *e, int offset,
+                                 double *out);
 
 #ifdef __cplusplus
 }

@@ -553,10 +553,9 @@ static int quadrature_build(const struct gsn_model *m,
         GSN_CHECK(q->point_particle, GSN_ERR_MEMORY, "cannot allocate points");
         for (int p = 0; p < count; ++p)
             q->point_particle[p] = -1;
+        /* the values stay: the lumped mass of eq. (28) sums them */
         GSN_CALL(gsn_rk_shape_rows(q->rk, count, q->point_position, 1,
                                    &q->gradient));
-        free(q->gradient.value);
-        q->gradient.value = NULL;
         return GSN_OK;
     }
     GSN_CALL(nodal_points(m, q));
