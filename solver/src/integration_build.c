@@ -341,6 +341,12 @@ static int gauss_points(const struct gsn_model *m, int n,
     double r[6], w[6];
     GSN_CHECK(gauss_rule(n, r, w) == 0, GSN_ERR_INPUT,
               "gauss_points %d: only 1 to 6 per direction", n);
+    /* The collapsed hexahedron's det J is quadratic along one axis: one
+     * point gives it at the centre, 3/4 of the tetrahedron's volume. */
+    GSN_CHECK(background || n >= 2, GSN_ERR_INPUT,
+              "integration.points 1 on tetrahedra: one Gauss point per "
+              "direction integrates 3/4 of each tetrahedron's volume; use 2 "
+              "or more");
     if (!background)
         cell_count = m->tetrahedron_count;
     GSN_CHECK(cell_count > 0, GSN_ERR_INPUT,
