@@ -60,5 +60,20 @@ scni=$(tail -1 "$out/ok/history.csv" | cut -d, -f"$column")
 gauss=$(tail -1 "$out/gauss/history.csv" | cut -d, -f"$column")
 awk -v a="$gauss" -v b="$scni" 'BEGIN { exit !(b < 0 && a / b > 0.9 && a / b < 1.1) }' ||
     fail "gauss: top_fz $gauss against SCNI's $scni"
+# Gauss points restart: stopped at 0.06 s on 1 thread and continued with
+# --restart on 2 threads, the run ends with the uninterrupted run's last
+# history row (the rows between differ only where the stop wrote its own).
+root=$(cd ../.. && pwd)
+sed -e "s#^geometry: .*#geometry: $root/geometries/box.geo#" \
+    cases/cli_box_gauss.yaml >"$out/gauss_full.yaml"
+sed -e 's/end: 0.1,/end: 0.06,/' "$out/gauss_full.yaml" >"$out/gauss_half.yaml"
+grep -q "end: 0.06," "$out/gauss_half.yaml" || fail "gauss: cannot shorten the case"
+mkdir -p "$out/gauss_restart" && cp "$out/gauss/model.h5" "$out/gauss_restart/"
+OMP_NUM_THREADS=1 "$geoscni" solve "$out/gauss_half.yaml" -o "$out/gauss_restart" -q 2>/dev/null ||
+    fail "gauss: half solve failed"
+OMP_NUM_THREADS=2 "$geoscni" solve "$out/gauss_full.yaml" -o "$out/gauss_restart" -q --restart 2>/dev/null ||
+    fail "gauss: restart failed"
+[ "$(tail -1 "$out/gauss/history.csv")" = "$(tail -1 "$out/gauss_restart/history.csv")" ] ||
+    fail "gauss: the restarted run ends elsewhere than the uninterrupted one"
 echo "$failures failures"
 [ "$failures" -eq 0 ]
