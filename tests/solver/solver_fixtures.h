@@ -184,6 +184,37 @@ static inline int fixture_solver_create(const struct gsn_case *c,
     return rc;
 }
 
+/* Loads the case at path; gauss_points > 0 replaces its integration by
+ * Gauss points, gauss_points a direction (on the lattice cells of a box,
+ * or the tetrahedra of a gmsh model). Prints the error chain on failure. */
+static inline int fixture_case_load(const char *path, int gauss_points,
+                                    struct gsn_case *c)
+{
+    int rc = gsn_case_load(path, c);
+    if (rc != GSN_OK) {
+        gsn_error_print(stderr);
+        return rc;
+    }
+    if (gauss_points > 0) {
+        c->integration = GSN_INTEGRATION_GAUSS;
+        c->gauss_points = gauss_points;
+    }
+    return GSN_OK;
+}
+
+/* fixture_case_load, then fixture_solver_create. */
+static inline int fixture_solver_case(const char *path, int gauss_points,
+                                      const int count[3], const double lo[3],
+                                      const double hi[3], double jitter,
+                                      double dt, struct gsn_case *c,
+                                      struct fixture_solver *s)
+{
+    memset(s, 0, sizeof *s);
+    int rc = fixture_case_load(path, gauss_points, c);
+    return rc == GSN_OK ? fixture_solver_create(c, count, lo, hi, jitter, dt, s)
+                        : rc;
+}
+
 /* The same on the particles gmsh makes for the case's geometry (pre, with
  * the reproducible mesher), through a model.h5 in a temporary folder. */
 static inline int fixture_solver_from_gmsh(const struct gsn_case *c, double dt,

@@ -26,14 +26,6 @@ static const int COUNT[3] = {6, 5, 4};
 static const double LO[3] = {0, 0, 0}, HI[3] = {1.0, 0.8, 0.6};
 #define JITTER 0.2
 
-static void load_gauss_case(const char *path, int gauss_points,
-                            struct gsn_case *c)
-{
-    TEST_INT(gsn_case_load(path, c), GSN_OK);
-    c->integration = GSN_INTEGRATION_GAUSS;
-    c->gauss_points = gauss_points;
-}
-
 static double squared_distance(const double x[3], const double y[3])
 {
     double d = 0.0;
@@ -54,9 +46,9 @@ static double total_mass(const struct gsn_explicit *e)
 static void test_mass_box(void)
 {
     struct gsn_case c;
-    load_gauss_case("cases/block_elastic.yaml", 2, &c);
     struct fixture_solver s;
-    TEST_INT(fixture_solver_create(&c, COUNT, LO, HI, JITTER, 1e-3, &s),
+    TEST_INT(fixture_solver_case("cases/block_elastic.yaml", 2, COUNT, LO, HI,
+                                 JITTER, 1e-3, &c, &s),
              GSN_OK);
     double volume = (HI[0] - LO[0]) * (HI[1] - LO[1]) * (HI[2] - LO[2]);
     double error = fabs(total_mass(s.loop) / (c.material.density * volume) - 1);
@@ -75,7 +67,8 @@ static void test_mass_box(void)
 static void test_mass_tetrahedra(int gauss_points)
 {
     struct gsn_case c;
-    load_gauss_case("cases/lshape_all_fixed.yaml", gauss_points, &c);
+    TEST_INT(fixture_case_load("cases/lshape_all_fixed.yaml", gauss_points, &c),
+             GSN_OK);
     struct fixture_solver s;
     TEST_INT(fixture_solver_from_gmsh(&c, 1e-4, &s), GSN_OK);
     const struct gsn_model *m = &s.model;
@@ -114,9 +107,9 @@ static void test_mass_tetrahedra(int gauss_points)
 static void test_translation_and_momentum(void)
 {
     struct gsn_case c;
-    load_gauss_case("cases/block_elastic.yaml", 3, &c);
     struct fixture_solver s;
-    TEST_INT(fixture_solver_create(&c, COUNT, LO, HI, JITTER, 1e-3, &s),
+    TEST_INT(fixture_solver_case("cases/block_elastic.yaml", 3, COUNT, LO, HI,
+                                 JITTER, 1e-3, &c, &s),
              GSN_OK);
     struct gsn_explicit *e = s.loop;
     const int n = e->particle_count;
@@ -192,9 +185,9 @@ static void test_translation_and_momentum(void)
 static void test_linear_field(void)
 {
     struct gsn_case c;
-    load_gauss_case("cases/block_elastic.yaml", 2, &c);
     struct fixture_solver s;
-    TEST_INT(fixture_solver_create(&c, COUNT, LO, HI, JITTER, 1e-3, &s),
+    TEST_INT(fixture_solver_case("cases/block_elastic.yaml", 2, COUNT, LO, HI,
+                                 JITTER, 1e-3, &c, &s),
              GSN_OK);
     struct gsn_explicit *e = s.loop;
     const double A[9] = {1e-3, 2e-4, -3e-4, -1e-4, -5e-4,
@@ -253,9 +246,9 @@ static void test_linear_field(void)
 static void test_domains(int gauss_points, double jitter)
 {
     struct gsn_case c;
-    load_gauss_case("cases/block_elastic.yaml", gauss_points, &c);
     struct fixture_solver s;
-    TEST_INT(fixture_solver_create(&c, COUNT, LO, HI, jitter, 1e-3, &s),
+    TEST_INT(fixture_solver_case("cases/block_elastic.yaml", gauss_points,
+                                 COUNT, LO, HI, jitter, 1e-3, &c, &s),
              GSN_OK);
     struct gsn_explicit *e = s.loop;
     const struct gsn_quadrature *q = s.quadrature;
@@ -328,11 +321,12 @@ static void test_domains(int gauss_points, double jitter)
 static void test_column(void)
 {
     struct gsn_case c;
-    load_gauss_case("cases/column_longitudinal.yaml", 3, &c);
     struct fixture_solver s;
     const int count[3] = {3, 3, 41};
     const double lo[3] = {0, 0, 0}, hi[3] = {0.5, 0.5, 10.0};
-    TEST_INT(fixture_solver_create(&c, count, lo, hi, 0.0, 1e-3, &s), GSN_OK);
+    TEST_INT(fixture_solver_case("cases/column_longitudinal.yaml", 3, count, lo,
+                                 hi, 0.0, 1e-3, &c, &s),
+             GSN_OK);
     struct gsn_explicit *e = s.loop;
     const double M =
         c.material.bulk_modulus + 4.0 * c.material.shear_modulus / 3.0;

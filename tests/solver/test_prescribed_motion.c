@@ -24,17 +24,6 @@ static const int COUNT[3] = {6, 6, 6};
 static const double LO[3] = {0, 0, 0}, HI[3] = {1, 1, 1};
 #define JITTER 0.2
 
-/* The case at path, with Gauss points (gauss_points per direction on the
- * lattice cells) instead of its integration when gauss_points > 0. */
-static void load_case(const char *path, int gauss_points, struct gsn_case *c)
-{
-    TEST_INT(gsn_case_load(path, c), GSN_OK);
-    if (gauss_points > 0) {
-        c->integration = GSN_INTEGRATION_GAUSS;
-        c->gauss_points = gauss_points;
-    }
-}
-
 static const char *method_name(int gauss_points)
 {
     return gauss_points > 0 ? "Gauss points" : "nodal points";
@@ -68,9 +57,9 @@ static void set_linear_field(struct gsn_explicit *e, const double *X,
 static void test_rigid_rotation(int gauss_points)
 {
     struct gsn_case c;
-    load_case("cases/block_paper.yaml", gauss_points, &c);
     struct fixture_solver s;
-    TEST_INT(fixture_solver_create(&c, COUNT, LO, HI, JITTER, 1e-3, &s),
+    TEST_INT(fixture_solver_case("cases/block_paper.yaml", gauss_points, COUNT,
+                                 LO, HI, JITTER, 1e-3, &c, &s),
              GSN_OK);
     struct gsn_explicit *e = s.loop;
     /* A pre-stress inside the Drucker-Prager cone (||s|| + alpha tr - R =
@@ -130,9 +119,9 @@ static void test_rigid_rotation(int gauss_points)
 static void test_simple_shear(int gauss_points)
 {
     struct gsn_case c;
-    load_case("cases/block_elastic.yaml", gauss_points, &c);
     struct fixture_solver s;
-    TEST_INT(fixture_solver_create(&c, COUNT, LO, HI, JITTER, 1e-3, &s),
+    TEST_INT(fixture_solver_case("cases/block_elastic.yaml", gauss_points,
+                                 COUNT, LO, HI, JITTER, 1e-3, &c, &s),
              GSN_OK);
     struct gsn_explicit *e = s.loop;
     const int steps = 1000;
