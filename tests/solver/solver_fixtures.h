@@ -184,6 +184,22 @@ static inline int fixture_solver_create(const struct gsn_case *c,
     return rc;
 }
 
+/* The step's increment is a linear field: previous_displacement = d, then
+ * d_I = A X_I at every particle (A the displacement gradient, row-major;
+ * X the reference positions). */
+static inline void fixture_set_linear_field(struct gsn_explicit *e,
+                                            const double A[9])
+{
+    const double *X = e->quadrature->rk->position;
+    memcpy(e->previous_displacement, e->displacement,
+           sizeof(double) * 3 * (size_t)e->particle_count);
+    for (int i = 0; i < e->particle_count; ++i)
+        for (int r = 0; r < 3; ++r)
+            e->displacement[3 * i + r] = A[3 * r] * X[3 * i] +
+                                         A[3 * r + 1] * X[3 * i + 1] +
+                                         A[3 * r + 2] * X[3 * i + 2];
+}
+
 /* Loads the case at path; gauss_points > 0 replaces its integration by
  * Gauss points, gauss_points a direction (on the lattice cells of a box,
  * or the tetrahedra of a gmsh model). Prints the error chain on failure. */

@@ -192,12 +192,7 @@ static void test_linear_field(void)
     struct gsn_explicit *e = s.loop;
     const double A[9] = {1e-3, 2e-4, -3e-4, -1e-4, -5e-4,
                          4e-4, 2e-4, 3e-4,  7e-4};
-    const double *X = s.quadrature->rk->position;
-    for (int i = 0; i < e->particle_count; ++i)
-        for (int r = 0; r < 3; ++r)
-            e->displacement[3 * i + r] = A[3 * r] * X[3 * i] +
-                                         A[3 * r + 1] * X[3 * i + 1] +
-                                         A[3 * r + 2] * X[3 * i + 2];
+    fixture_set_linear_field(e, A);
     TEST_INT(gsn_explicit_update_stress(e), GSN_OK);
     const double *sigma0 = &e->stress[0];
     double norm = gsn_voigt_norm(sigma0), spread = 0.0, reported = 0.0;

@@ -41,19 +41,6 @@ static void rotation_minus_identity(const double a[3], double theta,
         out[i] = s * K[i] + h * K2[i];
 }
 
-/* d_I = A X_I for every particle (A is the displacement gradient). */
-static void set_linear_field(struct gsn_explicit *e, const double *X,
-                             const double A[9])
-{
-    memcpy(e->previous_displacement, e->displacement,
-           sizeof(double) * 3 * (size_t)e->particle_count);
-    for (int i = 0; i < e->particle_count; ++i)
-        for (int r = 0; r < 3; ++r)
-            e->displacement[3 * i + r] = A[3 * r] * X[3 * i] +
-                                         A[3 * r + 1] * X[3 * i + 1] +
-                                         A[3 * r + 2] * X[3 * i + 2];
-}
-
 static void test_rigid_rotation(int gauss_points)
 {
     struct gsn_case c;
@@ -85,7 +72,7 @@ static void test_rigid_rotation(int gauss_points)
         double theta = 2.0 * M_PI * k / steps, A[9], R[9], S0[9], RS[9],
                expected[9];
         rotation_minus_identity(axis, theta, A);
-        set_linear_field(e, s.quadrature->rk->position, A);
+        fixture_set_linear_field(e, A);
         TEST_INT(gsn_explicit_update_stress(e), GSN_OK);
         for (int i = 0; i < 9; ++i)
             R[i] = A[i] + (i % 4 == 0 ? 1.0 : 0.0);
@@ -131,7 +118,7 @@ static void test_simple_shear(int gauss_points)
     double worst_spread = 0.0;
     for (int k = 1; k <= steps; ++k) {
         double A[9] = {0, k * dgamma, 0, 0, 0, 0, 0, 0, 0};
-        set_linear_field(e, s.quadrature->rk->position, A);
+        fixture_set_linear_field(e, A);
         TEST_INT(gsn_explicit_update_stress(e), GSN_OK);
         /* G = dH F_mid^-1 with F_mid = I + (k - 1/2) dgamma e_x (x) e_y. */
         double G[9] = {0, dgamma, 0, 0, 0, 0, 0, 0, 0};
