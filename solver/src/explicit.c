@@ -17,9 +17,9 @@ enum { CONSTRAINT_REFRESH = 64 };
  * parallel region costs more than they do (and spin-waiting threads on a
  * loaded machine cost far more). */
 enum { PARALLEL_MIN_ITEMS = 2048 };
-/* Particles per block of the one-pass step (point_blocks.h), with and
+/* Main points per block of the one-pass step (point_blocks.h), with and
  * without stabilization points; at most CHUNK. */
-enum { BLOCK_PARTICLES = 64, BLOCK_PARTICLES_STABILIZED = 32 };
+enum { BLOCK_POINTS = 64, BLOCK_POINTS_STABILIZED = 32 };
 /* Points per batch of the material update. */
 enum { CHUNK = 64 };
 /* Doubles of per-thread work per batch: G, strain increment, old stress,
@@ -83,6 +83,10 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     free(e->boundary_entry_offset);
     free(e->boundary_entry_value);
     free(e->boundary_entry_point);
+    free(e->domain_offset);
+    free(e->domain_point);
+    free(e->domain_weight);
+    free(e->point_owner);
     free(e);
     *handle = NULL;
 }
@@ -131,16 +135,36 @@ static int build_boundary_masks(struct gsn_explicit *e)
     return GSN_OK;
 }
 
-/* The nominal traction P N / V_L at boundary quadrature point b, from the
- * first-pass stress of the facet's cell (P includes the weight V_L). */
+/* sum_p P_p over the points of the nodal domain of particle `cell` (P
+ * includes the weights): the nodal point's own P with nodal integration
+ * (returned without a copy), else summed into sum. */
+static const double *domain_piola(const struct gsn_explicit *e, int cell,
+                                  double sum[9])
+{
+    int k0 = e->domain_offset[cell], k1 = e->domain_offset[cell + 1];
+    const double *P = &e->piola[9 * (size_t)e->domain_point[k0]];
+    if (k1 - k0 == 1)
+        return P;
+    memcpy(sum, P, 9 * sizeof(double));
+    for (int k = k0 + 1; k < k1; ++k)
+        for (int a = 0; a < 9; ++a)
+            sum[a] += e->piola[9 * (size_t)e->domain_point[k] + a];
+    return sum;
+}
+
+/* The nominal traction P N / V at boundary quadrature point b, from the
+ * first-pass stress of the facet's nodal domain (its points' P summed over
+ * their weights V): the nodal point's with nodal integration, the mean of
+ * the domain's Gauss points with Gauss. */
 static void boundary_traction(const struct gsn_explicit *e, int b, double t[3])
 {
     const struct gsn_quadrature *q = e->quadrature;
     int f = q->boundary_point_facet[b];
     int cell = e->model->facet_owner[f];
-    const double *P = &e->piola[9 * cell];
+    double sum[9];
+    const double *P = domain_piola(e, cell, sum);
     const double *N = &e->model->facet_normal[3 * f];
-    double scale = 1.0 / q->point_weight[cell];
+    double scale = 1.0 / e->domain_weight[cell];
     for (int i = 0; i < 3; ++i)
         t[i] = scale *
                (P[3 * i] * N[0] + P[3 * i + 1] * N[1] + P[3 * i + 2] * N[2]);
@@ -197,17 +221,25 @@ void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
     }
 }
 
-/* m_I = rho0 sum_L Psi_I(X_L) V_L (eq. (28)), f_ext_I = m_I g. */
+/* m_I = rho0 sum_p Psi_I(x_p) w_p over the main points (eq. (28)): the
+ * nodal points (x_p = X_L, w_p = V_L; Psi from particle_values) or the
+ * Gauss points (Psi from their own rows); f_ext_I = m_I g. By the
+ * partition of unity the masses add up to rho0 sum_p w_p. */
 static int build_mass(struct gsn_explicit *e, const struct gsn_case *c)
 {
     const struct gsn_quadrature *q = e->quadrature;
-    const struct gsn_shape_rows *values = &q->particle_values;
-    GSN_CHECK(values->row_count == e->particle_count && values->value,
+    GSN_CHECK(q->particle_values.row_count == e->particle_count &&
+                  q->particle_values.value,
               GSN_ERR_INTERNAL, "shape values are not one row per particle");
-    /* Nodal point l is particle l with weight V_l (SCNI, DNI). */
-    for (int l = 0; l < e->particle_count; ++l) {
-        double volume = q->point_weight[l];
-        for (int k = values->offset[l]; k < values->offset[l + 1]; ++k)
+    for (int p = 0; p < e->main_point_count; ++p) {
+        int particle = q->point_particle[p];
+        const struct gsn_shape_rows *values =
+            particle >= 0 ? &q->particle_values : &q->gradient;
+        int row = particle >= 0 ? particle : p;
+        GSN_CHECK(values->value, GSN_ERR_INTERNAL,
+                  "no shape values at integration point %d", p);
+        double volume = q->point_weight[p];
+        for (int k = values->offset[row]; k < values->offset[row + 1]; ++k)
             e->mass[values->index[k]] +=
                 c->material.density * values->value[k] * volume;
     }
@@ -224,6 +256,94 @@ static int build_mass(struct gsn_explicit *e, const struct gsn_case *c)
     return GSN_OK;
 }
 
+/* The nodal domain of every particle (explicit.h, domain_point): a nodal
+ * point belongs to its particle; a Gauss point to the nearest particle of
+ * its row (the particles whose kernels cover it: in practice the particle
+ * whose Voronoi cell holds it; ties to the lowest index). A particle that
+ * gets no Gauss point (possible with one point per tetrahedron) takes the
+ * nearest point its kernel covers; every particle covers one, as its mass
+ * is positive. Reads the gradient rows, so it runs before they are
+ * freed. */
+static int build_domains(struct gsn_explicit *e)
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    const struct gsn_shape_rows *g = &q->gradient;
+    const double *X = q->rk->position, *x = q->point_position;
+    int n = e->particle_count, main = e->main_point_count, rc = GSN_OK;
+    int *nearest_point = NULL;
+    double *nearest_distance = NULL;
+    GSN_CALL(alloc_array((void **)&e->point_owner, (size_t)main, sizeof(int)));
+    GSN_CALL(
+        alloc_array((void **)&e->domain_offset, (size_t)n + 1, sizeof(int)));
+    GSN_CALL(
+        alloc_array((void **)&e->domain_weight, (size_t)n, sizeof(double)));
+    GSN_CALL_GOTO(alloc_array((void **)&nearest_point, (size_t)n, sizeof(int)),
+                  rc, done);
+    GSN_CALL_GOTO(
+        alloc_array((void **)&nearest_distance, (size_t)n, sizeof(double)), rc,
+        done);
+    for (int i = 0; i < n; ++i) {
+        nearest_point[i] = -1;
+        nearest_distance[i] = INFINITY;
+    }
+    for (int p = 0; p < main; ++p) {
+        e->point_owner[p] = q->point_particle[p];
+        double closest = INFINITY;
+        for (int k = g->offset[p];
+             q->point_particle[p] < 0 && k < g->offset[p + 1]; ++k) {
+            int I = g->index[k];
+            double d = 0.0;
+            for (int a = 0; a < 3; ++a)
+                d += (x[3 * p + a] - X[3 * I + a]) *
+                     (x[3 * p + a] - X[3 * I + a]);
+            if (d < closest) {
+                closest = d;
+                e->point_owner[p] = I;
+            }
+            if (d < nearest_distance[I]) {
+                nearest_distance[I] = d;
+                nearest_point[I] = p;
+            }
+        }
+        GSN_CHECK_GOTO(e->point_owner[p] >= 0, rc, GSN_ERR_INTERNAL, done,
+                       "integration point %d has no particle", p);
+        e->domain_offset[e->point_owner[p] + 1]++;
+    }
+    for (int i = 0; i < n; ++i) {
+        if (e->domain_offset[i + 1] == 0) {
+            GSN_CHECK_GOTO(nearest_point[i] >= 0, rc, GSN_ERR_INTERNAL, done,
+                           "particle %d covers no integration point", i);
+            e->domain_offset[i + 1] = 1;
+        }
+        e->domain_offset[i + 1] += e->domain_offset[i];
+    }
+    GSN_CALL_GOTO(alloc_array((void **)&e->domain_point,
+                              (size_t)e->domain_offset[n], sizeof(int)),
+                  rc, done);
+    /* nearest_point becomes the fill position of each domain */
+    for (int i = 0; i < n; ++i) {
+        int k0 = e->domain_offset[i], k1 = e->domain_offset[i + 1];
+        if (k1 - k0 == 1)
+            e->domain_point[k0] = nearest_point[i]; /* overwritten if owned */
+        nearest_point[i] = k0;
+    }
+    for (int p = 0; p < main; ++p)
+        e->domain_point[nearest_point[e->point_owner[p]]++] = p;
+    for (int i = 0; i < n; ++i) {
+        int k0 = e->domain_offset[i];
+        e->domain_weight[i] = q->point_weight[e->domain_point[k0]];
+        for (int k = k0 + 1; k < e->domain_offset[i + 1]; ++k)
+            e->domain_weight[i] += q->point_weight[e->domain_point[k]];
+        GSN_CHECK_GOTO(e->domain_weight[i] > 0.0, rc, GSN_ERR_NUMERICAL, done,
+                       "the integration points of particle %d have no volume",
+                       i);
+    }
+done:
+    free(nearest_point);
+    free(nearest_distance);
+    return rc;
+}
+
 int gsn_explicit_create(const struct gsn_model *m,
                         const struct gsn_quadrature *quadrature,
                         const struct gsn_material_model *material,
@@ -232,10 +352,6 @@ int gsn_explicit_create(const struct gsn_model *m,
                         struct gsn_explicit **out)
 {
     *out = NULL;
-    GSN_CHECK(quadrature->method != GSN_INTEGRATION_GAUSS, GSN_ERR_INPUT,
-              "%s: the explicit solver runs with integration scni or dni; "
-              "gauss is for the kernel comparisons only",
-              c->path);
     struct gsn_explicit *e = calloc(1, sizeof *e);
     GSN_CHECK(e, GSN_ERR_MEMORY, "out of memory");
     int rc = GSN_OK;
@@ -288,8 +404,8 @@ int gsn_explicit_create(const struct gsn_model *m,
     GSN_CALL_GOTO(gsn_point_blocks_create(quadrature,
                                           quadrature->point_count >
                                                   quadrature->main_point_count
-                                              ? BLOCK_PARTICLES_STABILIZED
-                                              : BLOCK_PARTICLES,
+                                              ? BLOCK_POINTS_STABILIZED
+                                              : BLOCK_POINTS,
                                           &e->blocks),
                   rc, fail);
     GSN_CALL_GOTO(
@@ -308,6 +424,7 @@ int gsn_explicit_create(const struct gsn_model *m,
     }
     GSN_CALL_GOTO(build_boundary_masks(e), rc, fail);
     GSN_CALL_GOTO(build_mass(e, c), rc, fail);
+    GSN_CALL_GOTO(build_domains(e), rc, fail);
     GSN_CALL_GOTO(gsn_material_initialize(material, main, e->stress, e->state),
                   rc, fail);
     GSN_CALL_GOTO(gsn_explicit_refresh(e), rc, fail);
@@ -591,13 +708,13 @@ static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
         fold[a] -= P[a];
 }
 
-/* Per-thread work of one block: u and forces (4 per slot), the nodal
- * increments and folded P (9 per particle), the elastic shares (1 per
- * particle), and a chunk's material work. */
+/* Per-thread work of one block: u and forces (4 per slot), the main
+ * points' increments and folded P (9 per point), the elastic shares (1 per
+ * point), and a chunk's material work. */
 static size_t block_work_size(const struct gsn_point_blocks *b)
 {
     size_t size = 8 * (size_t)b->max_block_slots +
-                  19 * (size_t)b->max_block_particles + CHUNK_WORK;
+                  19 * (size_t)b->max_block_points + CHUNK_WORK;
     return (size + 7) / 8 * 8; /* whole cache lines per thread */
 }
 
@@ -639,13 +756,13 @@ static int block_step(struct gsn_explicit *e, int k)
 {
     const struct gsn_point_blocks *b = e->blocks;
     const int S = b->subcells;
-    const int p0 = b->block_particle[k], p1 = b->block_particle[k + 1];
+    const int p0 = b->block_point[k], p1 = b->block_point[k + 1];
     const int slots = b->block_slot[k + 1] - b->block_slot[k];
     double *u4 = block_work(e), *f4 = u4 + 4 * (size_t)b->max_block_slots;
     double *dH = f4 + 4 * (size_t)b->max_block_slots;
-    double *fold = dH + 9 * (size_t)b->max_block_particles;
-    double *share = fold + 9 * (size_t)b->max_block_particles;
-    double *work = share + (size_t)b->max_block_particles;
+    double *fold = dH + 9 * (size_t)b->max_block_points;
+    double *share = fold + 9 * (size_t)b->max_block_points;
+    double *work = share + (size_t)b->max_block_points;
     block_gather(e, k, e->displacement, e->previous_displacement, u4);
     memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
     memset(&e->point_failed[p0], 0, sizeof(int) * (size_t)(p1 - p0));
@@ -675,11 +792,11 @@ static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
     const struct gsn_point_blocks *b = e->blocks;
     const double *w = q->point_weight;
     const int S = b->subcells;
-    const int p0 = b->block_particle[k], p1 = b->block_particle[k + 1];
+    const int p0 = b->block_point[k], p1 = b->block_point[k + 1];
     const int slots = b->block_slot[k + 1] - b->block_slot[k];
     double *u4 = block_work(e), *f4 = u4 + 4 * (size_t)b->max_block_slots;
     double *H = f4 + 4 * (size_t)b->max_block_slots;
-    double *fold = H + 9 * (size_t)b->max_block_particles;
+    double *fold = H + 9 * (size_t)b->max_block_points;
     block_gather(e, k, x, NULL, u4);
     memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
     for (int L = p0; L < p1; ++L) {
@@ -719,7 +836,8 @@ static int report_failure(const struct gsn_explicit *e, const char *what)
     for (int p = 0; p < e->point_count; ++p) {
         if (!e->point_failed[p])
             continue;
-        int particle = q->point_particle ? q->point_particle[p] : -1;
+        int particle =
+            p < e->main_point_count ? e->point_owner[p] : q->point_particle[p];
         const double *x = &q->point_position[3 * p];
         double F[9];
         for (int a = 0; a < 9; ++a)
@@ -727,12 +845,13 @@ static int report_failure(const struct gsn_explicit *e, const char *what)
         double J = gsn_matrix_determinant(F);
         return gsn_error_raise(
             GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
-            "step %ld, t = %.6g s: %s at particle %d (reference position "
+            "step %ld, t = %.6g s: %s at particle %d%s (reference position "
             "%g, %g, %g; det F before the step %.3g); the particle is "
             "inverted or the step is unstable: reduce time.step or check "
             "the boundary conditions",
-            e->step + 1, (e->step + 1) * e->dt, what, particle, x[0], x[1],
-            x[2], J);
+            e->step + 1, (e->step + 1) * e->dt, what, particle,
+            q->point_particle[p] < 0 ? ", at a Gauss point of its domain" : "",
+            x[0], x[1], x[2], J);
     }
     return GSN_OK;
 }
@@ -970,13 +1089,35 @@ void gsn_explicit_particle_field(const struct gsn_explicit *e,
     }
 }
 
+/* out_J (count values) = sum_p (w_p / W_J) values[stride p .. + count]
+ * over the points p of J's nodal domain, W_J their total weight: the
+ * nodal point's own values (a share of exactly 1) with nodal
+ * integration. */
+static void domain_mean(const struct gsn_explicit *e, const double *values,
+                        int stride, int count, double *out)
+{
+    const double *w = e->quadrature->point_weight;
+#pragma omp parallel for if (parallel_worth(e->particle_count))
+    for (int j = 0; j < e->particle_count; ++j) {
+        double *o = &out[(size_t)count * j];
+        for (int k = e->domain_offset[j]; k < e->domain_offset[j + 1]; ++k) {
+            int p = e->domain_point[k];
+            double share = w[p] / e->domain_weight[j];
+            const double *v = &values[(size_t)stride * p];
+            for (int a = 0; a < count; ++a)
+                o[a] = k == e->domain_offset[j] ? share * v[a]
+                                                : o[a] + share * v[a];
+        }
+    }
+}
+
 void gsn_explicit_particle_stress(const struct gsn_explicit *e, double *out)
 {
-    const struct gsn_quadrature *q = e->quadrature;
-    memset(out, 0, sizeof(double) * 6 * (size_t)e->particle_count);
-    for (int p = 0; p < e->main_point_count; ++p) {
-        int particle = q->point_particle ? q->point_particle[p] : -1;
-        if (particle >= 0)
-            memcpy(&out[6 * particle], &e->stress[6 * p], 6 * sizeof(double));
-    }
+    domain_mean(e, e->stress, 6, 6, out);
+}
+
+void gsn_explicit_particle_state(const struct gsn_explicit *e, int offset,
+                                 double *out)
+{
+    domain_mean(e, e->state + offset, e->state_size, 1, out);
 }

@@ -19,19 +19,28 @@
  *     f_int_I = sum_p P_p grad_X Psi_I(X_p)                   eq. (29)
  *     a_{n+1} = M^-1 (f_ext - f_int)                          eq. (32)
  *   v_{n+1} = v_n + dt/2 (a_n + a_{n+1})                      eq. (34)
- * with the row-sum lumped mass m_I = rho0 sum_L Psi_I(X_L) V_L (eq. (28))
- * and the body force f_ext_I = m_I g (eq. (27) with the same row sums).
+ * with the row-sum lumped mass m_I = rho0 sum_p Psi_I(x_p) w_p over the
+ * main points (eq. (28); sum_L Psi_I(X_L) V_L with nodal integration) and
+ * the body force f_ext_I = m_I g (eq. (27) with the same row sums).
+ *
+ * Integration points: the main points are the nodal points (point L is
+ * particle L) or Gauss points, each with its own stress, H and material
+ * state; MSCNI adds stabilization points to nodal points. What a particle
+ * reports (stress, damage, plastic strain) and what the boundary term
+ * reads is the weighted mean over its nodal domain's points (domain_point
+ * below): its own nodal point, bit for bit, with nodal integration.
  *
  * Constrained boundaries: RK test functions do not vanish on a surface whose
  * displacement is prescribed, so the weak form keeps its boundary term
  * -int_{Gamma_u} Psi_I t dS with t = sigma n, evaluated on the boundary
- * facets' quadrature points from the stress of the facet's cell, for the
- * constrained components. Without it the particles near a constrained
- * surface feel the surface's traction flux and a linear field is not an
- * exact solution (2% error measured on the essential-boundary patch test);
- * with it the patch test is exact (seed eq. (24) then holds for every test
- * function, not only for those whose support misses the boundary). The
- * reaction on a surface is the resultant of the same tractions.
+ * facets' quadrature points from the stress of the facet's nodal domain,
+ * for the constrained components. Without it the particles near a
+ * constrained surface feel the surface's traction flux and a linear field
+ * is not an exact solution (2% error measured on the essential-boundary
+ * patch test); with it the patch test is exact (seed eq. (24) then holds
+ * for every test function, not only for those whose support misses the
+ * boundary). The reaction on a surface is the resultant of the same
+ * tractions.
  *
  * Local damping (Cundall 1987, as in FLAC and most MPM codes), optional:
  * on every free component the unbalanced force f = f_ext - f_int gets
@@ -81,7 +90,7 @@ struct gsn_explicit {
 
     /* Work arrays, owned. */
     double *previous_displacement, *previous_external, *new_acceleration;
-    double *piola;        /* points x 9: P_p w_p of the nodal points (the pass
+    double *piola;        /* points x 9: P_p w_p of the main points (the pass
                              keeps the stabilization points' P in registers) */
     double *point_energy; /* points: internal energy increment, J */
     int *point_failed;    /* points: 1 where pass 1 failed */
@@ -90,7 +99,7 @@ struct gsn_explicit {
     struct gsn_point_blocks *blocks; /* the rows cut for one pass a step */
     double *slot_force;              /* slots x 3: forces of each block */
     double *displacement_gradient;   /* points x 9: H = F - I at t_n at the
-                                        nodal points (the rows of the
+                                        main points (the rows of the
                                         stabilization points stay zero: their
                                         stress is integrated as a rate) */
     int small_strain;                /* kinematics: small: F = I in the
@@ -107,6 +116,16 @@ struct gsn_explicit {
      * boundary point q, in boundary point order. */
     int *boundary_entry_offset, *boundary_entry_point;
     double *boundary_entry_value;
+    /* The main points of each particle's nodal domain (offset particles
+     * + 1), what the particle reports of the points' stress and state and
+     * what the boundary term reads: nodal integration, the particle's own
+     * nodal point; Gauss, the points nearest to the particle (among those
+     * its kernel covers, so the points of its nodal domain) or, where there
+     * are none, the one point nearest to it. domain_weight: the sum of
+     * their weights, m^3. */
+    int *domain_offset, *domain_point;
+    double *domain_weight;
+    int *point_owner; /* main points: the particle whose domain holds it */
 };
 
 /* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped
@@ -161,9 +180,16 @@ void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
 void gsn_explicit_particle_field(const struct gsn_explicit *e,
                                  const double *coefficients, double *out);
 
-/* Stress at the particles (n x 6): the stress of each particle's nodal
- * point. */
+/* Stress at the particles (n x 6, Pa): the weighted mean stress of the
+ * points of each particle's nodal domain (explicit.h, domain_point): the
+ * nodal point's own stress with nodal integration. */
 void gsn_explicit_particle_stress(const struct gsn_explicit *e, double *out);
+
+/* Material state variable `offset` at the particles (n), the same weighted
+ * mean over each nodal domain as the stress (damage, equivalent plastic
+ * strain: a convex combination, so it stays in their ranges). */
+void gsn_explicit_particle_state(const struct gsn_explicit *e, int offset,
+                                 double *out);
 
 #ifdef __cplusplus
 }

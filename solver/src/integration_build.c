@@ -341,6 +341,12 @@ static int gauss_points(const struct gsn_model *m, int n,
     double r[6], w[6];
     GSN_CHECK(gauss_rule(n, r, w) == 0, GSN_ERR_INPUT,
               "gauss_points %d: only 1 to 6 per direction", n);
+    /* The collapsed hexahedron's det J is quadratic along one axis: one
+     * point gives it at the centre, 3/4 of the tetrahedron's volume. */
+    GSN_CHECK(background || n >= 2, GSN_ERR_INPUT,
+              "integration.points 1 on tetrahedra: one Gauss point per "
+              "direction integrates 3/4 of each tetrahedron's volume; use 2 "
+              "or more");
     if (!background)
         cell_count = m->tetrahedron_count;
     GSN_CHECK(cell_count > 0, GSN_ERR_INPUT,
@@ -553,10 +559,9 @@ static int quadrature_build(const struct gsn_model *m,
         GSN_CHECK(q->point_particle, GSN_ERR_MEMORY, "cannot allocate points");
         for (int p = 0; p < count; ++p)
             q->point_particle[p] = -1;
+        /* the values stay: the lumped mass of eq. (28) sums them */
         GSN_CALL(gsn_rk_shape_rows(q->rk, count, q->point_position, 1,
                                    &q->gradient));
-        free(q->gradient.value);
-        q->gradient.value = NULL;
         return GSN_OK;
     }
     GSN_CALL(nodal_points(m, q));

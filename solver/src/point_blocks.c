@@ -1,4 +1,4 @@
-/* Blocks of particles for the one-pass force computation: see
+/* Blocks of integration points for the one-pass force computation: see
  * point_blocks.h. */
 #include "point_blocks.h"
 #include "geoscni/error.h"
@@ -12,7 +12,7 @@ void gsn_point_blocks_destroy(struct gsn_point_blocks **blocks)
     if (!blocks || !*blocks)
         return;
     struct gsn_point_blocks *b = *blocks;
-    free(b->block_particle);
+    free(b->block_point);
     free(b->block_slot);
     free(b->slot_particle);
     free(b->row_start);
@@ -27,12 +27,12 @@ void gsn_point_blocks_destroy(struct gsn_point_blocks **blocks)
 size_t gsn_point_blocks_bytes(const struct gsn_point_blocks *b)
 {
     size_t rows =
-        (size_t)b->block_particle[b->block_count] * (1 + (size_t)b->subcells);
+        (size_t)b->block_point[b->block_count] * (1 + (size_t)b->subcells);
     size_t entries = (size_t)b->row_start[rows];
     size_t slots = (size_t)b->block_slot[b->block_count];
     return entries * (sizeof(uint16_t) + 3 * sizeof(double)) +
            (rows + 1) * sizeof(int) + 2 * slots * sizeof(int) +
-           ((size_t)b->block_particle[b->block_count] + 1) * sizeof(int);
+           ((size_t)b->block_point[b->block_count] + 1) * sizeof(int);
 }
 
 /* B_s of stabilization point p (particle L) into index/gradient, from the
@@ -72,25 +72,24 @@ static int compare_int(const void *a, const void *b)
 
 /* The blocks and the length of every packed row. */
 static int cut_blocks(struct gsn_point_blocks *b,
-                      const struct gsn_quadrature *q, int block_particles)
+                      const struct gsn_quadrature *q, int block_points)
 {
     const struct gsn_shape_rows *g = &q->gradient;
-    int n = q->particle_count, S = b->subcells;
-    b->block_count = (n + block_particles - 1) / block_particles;
-    b->block_particle = malloc(sizeof(int) * ((size_t)b->block_count + 1));
+    int n = q->main_point_count, S = b->subcells;
+    b->block_count = (n + block_points - 1) / block_points;
+    b->block_point = malloc(sizeof(int) * ((size_t)b->block_count + 1));
     b->block_slot = calloc((size_t)b->block_count + 1, sizeof(int));
     b->row_start = malloc(sizeof(int) * ((size_t)n * (1 + (size_t)S) + 1));
-    GSN_CHECK(b->block_particle && b->block_slot && b->row_start,
-              GSN_ERR_MEMORY, "out of memory");
+    GSN_CHECK(b->block_point && b->block_slot && b->row_start, GSN_ERR_MEMORY,
+              "out of memory");
     for (int k = 0; k <= b->block_count; ++k)
-        b->block_particle[k] =
-            k * block_particles < n ? k * block_particles : n;
+        b->block_point[k] = k * block_points < n ? k * block_points : n;
     int64_t entries = 0;
     b->row_start[0] = 0;
     for (int k = 0; k < b->block_count; ++k) {
-        int p0 = b->block_particle[k], p1 = b->block_particle[k + 1];
-        if (p1 - p0 > b->max_block_particles)
-            b->max_block_particles = p1 - p0;
+        int p0 = b->block_point[k], p1 = b->block_point[k + 1];
+        if (p1 - p0 > b->max_block_points)
+            b->max_block_points = p1 - p0;
         for (int L = p0; L < p1; ++L) {
             entries += g->offset[L + 1] - g->offset[L];
             b->row_start[gsn_point_blocks_main_row(b, k, L) + 1] = (int)entries;
@@ -113,8 +112,8 @@ static void fill_block(struct gsn_point_blocks *b,
                        const struct gsn_quadrature *q, int k, int *particle)
 {
     const struct gsn_shape_rows *g = &q->gradient;
-    int n = q->particle_count, S = b->subcells;
-    int p0 = b->block_particle[k], p1 = b->block_particle[k + 1];
+    int n = q->main_point_count, S = b->subcells;
+    int p0 = b->block_point[k], p1 = b->block_point[k + 1];
     for (int L = p0; L < p1; ++L) {
         int r = gsn_point_blocks_main_row(b, k, L);
         size_t at = (size_t)b->row_start[r],
@@ -139,7 +138,7 @@ static void fill_block(struct gsn_point_blocks *b,
 static int build_slots(struct gsn_point_blocks *b, const int *particle,
                        int particle_count)
 {
-    int rows = b->block_particle[b->block_count] * (1 + b->subcells);
+    int rows = b->block_point[b->block_count] * (1 + b->subcells);
     size_t entries = (size_t)b->row_start[rows];
     int *mark = malloc(sizeof(int) * (size_t)(particle_count + 1));
     int *slot_of = malloc(sizeof(int) * (size_t)(particle_count + 1));
@@ -152,8 +151,8 @@ static int build_slots(struct gsn_point_blocks *b, const int *particle,
     int slots = 0;
     for (int k = 0; k < b->block_count; ++k) {
         int first = slots;
-        int r0 = b->block_particle[k] * (1 + b->subcells);
-        int r1 = b->block_particle[k + 1] * (1 + b->subcells);
+        int r0 = b->block_point[k] * (1 + b->subcells);
+        int r1 = b->block_point[k + 1] * (1 + b->subcells);
         int e0 = b->row_start[r0], e1 = b->row_start[r1];
         for (int e = e0; e < e1; ++e) {
             if (mark[particle[e]] != k) {
@@ -208,13 +207,13 @@ static int build_particle_slots(struct gsn_point_blocks *b, int particle_count)
     return GSN_OK;
 }
 
-/* The blocks of at most block_particles particles. */
-static int blocks_build(const struct gsn_quadrature *q, int block_particles,
+/* The blocks of at most block_points main points. */
+static int blocks_build(const struct gsn_quadrature *q, int block_points,
                         struct gsn_point_blocks *b)
 {
-    int n = q->particle_count;
+    int n = q->main_point_count;
     b->subcells = n > 0 ? (q->point_count - n) / n : 0;
-    GSN_CALL(cut_blocks(b, q, block_particles));
+    GSN_CALL(cut_blocks(b, q, block_points));
     size_t entries =
         (size_t)b->row_start[(size_t)n * (1 + (size_t)b->subcells)];
     int *particle = malloc(sizeof(int) * (entries ? entries : 1));
@@ -227,41 +226,42 @@ static int blocks_build(const struct gsn_quadrature *q, int block_particles,
 #pragma omp parallel for schedule(dynamic, 16)
     for (int k = 0; k < b->block_count; ++k)
         fill_block(b, q, k, particle);
-    GSN_CALL_GOTO(build_slots(b, particle, n), rc, done);
-    GSN_CALL_GOTO(build_particle_slots(b, n), rc, done);
+    GSN_CALL_GOTO(build_slots(b, particle, q->particle_count), rc, done);
+    GSN_CALL_GOTO(build_particle_slots(b, q->particle_count), rc, done);
 done:
     free(particle);
     return rc;
 }
 
-int gsn_point_blocks_create(const struct gsn_quadrature *q, int block_particles,
+int gsn_point_blocks_create(const struct gsn_quadrature *q, int block_points,
                             struct gsn_point_blocks **out)
 {
     *out = NULL;
-    int n = q->particle_count;
-    GSN_CHECK(block_particles > 0, GSN_ERR_INTERNAL, "block size %d",
-              block_particles);
-    GSN_CHECK(q->main_point_count == n &&
-                  (q->point_count - n) % (n > 0 ? n : 1) == 0,
+    int n = q->main_point_count, stabilization = q->point_count - n;
+    GSN_CHECK(block_points > 0, GSN_ERR_INTERNAL, "block size %d",
+              block_points);
+    GSN_CHECK(stabilization == 0 || (n == q->particle_count &&
+                                     stabilization % (n > 0 ? n : 1) == 0),
               GSN_ERR_INTERNAL,
-              "%d points, %d nodal points, %d particles: not nodal points "
-              "with the same number of stabilization points per particle",
-              q->point_count, q->main_point_count, n);
+              "%d points, %d main points, %d particles: stabilization "
+              "points need one nodal point per particle and the same "
+              "number of them per nodal point",
+              q->point_count, n, q->particle_count);
     /* Halve the blocks until every block fits the 16-bit slots (a block of
-     * one particle always does: 7 rows of at most GSN_RK_MAX_NEIGHBOURS). */
+     * one point always does: 7 rows of at most GSN_RK_MAX_NEIGHBOURS). */
     for (;;) {
         struct gsn_point_blocks *b = calloc(1, sizeof *b);
         GSN_CHECK(b, GSN_ERR_MEMORY, "out of memory");
-        int rc = blocks_build(q, block_particles, b);
+        int rc = blocks_build(q, block_points, b);
         if (rc == GSN_OK) {
             *out = b;
             return GSN_OK;
         }
         gsn_point_blocks_destroy(&b);
-        if (rc != GSN_ERR_INPUT || block_particles == 1)
+        if (rc != GSN_ERR_INPUT || block_points == 1)
             GSN_CALL(rc);
         gsn_error_clear();
-        block_particles /= 2;
+        block_points /= 2;
     }
 }
 

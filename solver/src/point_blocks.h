@@ -1,9 +1,10 @@
 /* Gradient rows regrouped for one pass per step (issue 5, point 7).
  *
- * The particles are cut into fixed blocks of consecutive particles (the cut
- * does not depend on the thread count). A block holds the nodal point of
- * each of its particles and, with MSCNI, their stabilization points. Each
- * block lists the particles its rows touch (its slots), and its rows are
+ * The main integration points (the nodal points, one per particle, or the
+ * Gauss points) are cut into fixed blocks of consecutive points (the cut
+ * does not depend on the thread count). A block holds its main points and,
+ * with MSCNI, their stabilization points (S per nodal point). Each block
+ * lists the particles its rows touch (its slots), and its rows are
  * copied into one packed stream in block order, every entry with its slot
  * and its three gradient components, so a block gathers the displacement
  * increments of its slots, computes its points' stress, and scatters their
@@ -35,42 +36,43 @@ extern "C" {
 
 struct gsn_point_blocks {
     int block_count;
-    int subcells;        /* stabilization points per particle, or 0 */
-    int *block_particle; /* block_count + 1: the particles of each block */
-    int *block_slot;     /* block_count + 1: the slots of each block */
-    int *slot_particle;  /* slots: the particle of each */
-    /* Packed rows: block k holds the nodal rows of its particles p0..p1-1,
-     * then their stabilization rows (S per particle, in sub-cell order);
+    int subcells;       /* stabilization points per main point, or 0 */
+    int *block_point;   /* block_count + 1: the main points of each block */
+    int *block_slot;    /* block_count + 1: the slots of each block */
+    int *slot_particle; /* slots: the particle of each */
+    /* Packed rows: block k holds the rows of its main points p0..p1-1,
+     * then their stabilization rows (S per point, in sub-cell order);
      * row r has entries row_start[r] .. row_start[r+1]-1. */
-    int *row_start;            /* particles x (1 + subcells) + 1 */
+    int *row_start;            /* main points x (1 + subcells) + 1 */
     uint16_t *entry_slot;      /* the slot of each entry, within its block */
     double *entry_gradient;    /* 3 per entry: dPsi_I/dX_j, 1/m */
     int *particle_slot_offset; /* particles + 1 */
     int *particle_slot;        /* the slots of each particle, ascending */
     int max_block_slots;       /* the most slots of one block */
-    int max_block_particles;   /* the most particles of one block */
+    int max_block_points;      /* the most main points of one block */
 };
 
-/* The packed row of nodal point L (block k holds L). */
+/* The packed row of main point L (block k holds L). */
 static inline int gsn_point_blocks_main_row(const struct gsn_point_blocks *b,
                                             int k, int L)
 {
-    return b->block_particle[k] * (1 + b->subcells) +
-           (L - b->block_particle[k]);
+    return b->block_point[k] * (1 + b->subcells) + (L - b->block_point[k]);
 }
 
-/* The packed row of stabilization point s of particle L (block k holds L). */
+/* The packed row of stabilization point s of nodal point L (block k holds
+ * L). */
 static inline int gsn_point_blocks_subcell_row(const struct gsn_point_blocks *b,
                                                int k, int L, int s)
 {
-    int p0 = b->block_particle[k], p1 = b->block_particle[k + 1];
+    int p0 = b->block_point[k], p1 = b->block_point[k + 1];
     return p0 * (1 + b->subcells) + (p1 - p0) + b->subcells * (L - p0) + s;
 }
 
-/* Packs the gradient rows of q (nodal points [0, main) = particles, and
- * main + S L + s the stabilization points) into blocks of at most
- * block_particles particles. */
-int gsn_point_blocks_create(const struct gsn_quadrature *q, int block_particles,
+/* Packs the gradient rows of q (main points [0, main): the nodal points,
+ * point L = particle L, or the Gauss points; main + S L + s the
+ * stabilization points of nodal point L) into blocks of at most
+ * block_points main points. */
+int gsn_point_blocks_create(const struct gsn_quadrature *q, int block_points,
                             struct gsn_point_blocks **out);
 
 /* Frees; NULL-safe, nulls the handle. */

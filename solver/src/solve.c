@@ -123,23 +123,29 @@ static void fill_frame(struct run *r)
                                     f->field[GSN_FRAME_VELOCITY]);
     if (stress || equivalent)
         gsn_explicit_particle_stress(e, f->field[GSN_FRAME_STRESS]);
-    for (int j = 0; j < n; ++j) {
-        if (equivalent) {
-            const double *s = &f->field[GSN_FRAME_STRESS][6 * j];
-            double mean = gsn_voigt_trace(s) / 3.0, dev[6];
-            memcpy(dev, s, sizeof dev);
-            for (int k = 0; k < 3; ++k)
-                dev[k] -= mean;
-            f->field[GSN_FRAME_EQUIVALENT_STRESS][j] =
-                sqrt(1.5) * gsn_voigt_norm(dev);
-        }
-        const double *state = &e->state[(size_t)e->state_size * j];
-        f->field[GSN_FRAME_DAMAGE][j] =
-            r->damage_offset >= 0 ? state[r->damage_offset] : 0.0;
-        if (plastic)
-            f->field[GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN][j] =
-                r->plastic_offset >= 0 ? state[r->plastic_offset] : 0.0;
+    for (int j = 0; equivalent && j < n; ++j) {
+        const double *s = &f->field[GSN_FRAME_STRESS][6 * j];
+        double mean = gsn_voigt_trace(s) / 3.0, dev[6];
+        memcpy(dev, s, sizeof dev);
+        for (int k = 0; k < 3; ++k)
+            dev[k] -= mean;
+        f->field[GSN_FRAME_EQUIVALENT_STRESS][j] =
+            sqrt(1.5) * gsn_voigt_norm(dev);
     }
+    /* The material state at the particles: their nodal points' (Gauss: the
+     * mean over each nodal domain, explicit.h). */
+    if (r->damage_offset >= 0)
+        gsn_explicit_particle_state(e, r->damage_offset,
+                                    f->field[GSN_FRAME_DAMAGE]);
+    else
+        memset(f->field[GSN_FRAME_DAMAGE], 0, sizeof(double) * (size_t)n);
+    if (plastic && r->plastic_offset >= 0)
+        gsn_explicit_particle_state(
+            e, r->plastic_offset,
+            f->field[GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN]);
+    else if (plastic)
+        memset(f->field[GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN], 0,
+               sizeof(double) * (size_t)n);
 }
 
 static int write_history_header(struct run *r)

@@ -100,15 +100,43 @@ static inline void fixture_solver_destroy(struct fixture_solver *s)
     gsn_model_free(&s->model);
 }
 
-/* Builds the quadrature of the case on s->model (already filled), its
+/* The cells of a box lattice of count[k] particles along axis k (in the
+ * order of fixture_box: x fastest) as hexahedra of 8 vertices (vertex
+ * (i,j,k) at i + 2j + 4k, gsn_quadrature_create's background cells), from
+ * the particles' positions, jittered or not: they tile the box. Returns
+ * the array (cell_count x 24, caller frees) or NULL. */
+static inline double *fixture_lattice_cells(const int count[3],
+                                            const double *position,
+                                            int *cell_count)
+{
+    int cells = (count[0] - 1) * (count[1] - 1) * (count[2] - 1), at = 0;
+    double *v = malloc(sizeof(double) * 24 * (size_t)(cells > 0 ? cells : 1));
+    *cell_count = cells;
+    for (int k = 0; v && k < count[2] - 1; ++k)
+        for (int j = 0; j < count[1] - 1; ++j)
+            for (int i = 0; i < count[0] - 1; ++i, ++at)
+                for (int a = 0; a < 8; ++a) {
+                    int p = (i + (a & 1)) +
+                            count[0] * ((j + ((a >> 1) & 1)) +
+                                        count[1] * (k + ((a >> 2) & 1)));
+                    memcpy(&v[24 * at + 3 * a], &position[3 * p],
+                           3 * sizeof(double));
+                }
+    return v;
+}
+
+/* Builds the quadrature of the case on s->model (already filled; Gauss on
+ * the given background cells, NULL for the model's tetrahedra), its
  * material, the constraints of its boundary entries (none if it has none)
  * and the loop with time step dt. Prints the error chain on failure. */
-static inline int fixture_solver_from_model(const struct gsn_case *c, double dt,
+static inline int fixture_solver_from_cells(const struct gsn_case *c, double dt,
+                                            const double *cells, int cell_count,
                                             struct fixture_solver *s)
 {
     struct gsn_kernel_options kernel;
     gsn_kernel_options_from_case(c, &kernel);
-    int rc = gsn_quadrature_create(&s->model, &kernel, NULL, 0, &s->quadrature);
+    int rc = gsn_quadrature_create(&s->model, &kernel, cells, cell_count,
+                                   &s->quadrature);
     if (rc == GSN_OK)
         rc = gsn_material_model_create(gsn_material_name_for_case(&c->material),
                                        &c->material, &s->material);
@@ -125,7 +153,15 @@ static inline int fixture_solver_from_model(const struct gsn_case *c, double dt,
     return rc;
 }
 
-/* The same on a box of particles (fixture_box). */
+/* The same with Gauss on the model's tetrahedra. */
+static inline int fixture_solver_from_model(const struct gsn_case *c, double dt,
+                                            struct fixture_solver *s)
+{
+    return fixture_solver_from_cells(c, dt, NULL, 0, s);
+}
+
+/* The same on a box of particles (fixture_box); Gauss on its lattice
+ * cells (fixture_lattice_cells). */
 static inline int fixture_solver_create(const struct gsn_case *c,
                                         const int count[3], const double lo[3],
                                         const double hi[3], double jitter,
@@ -137,7 +173,62 @@ static inline int fixture_solver_create(const struct gsn_case *c,
         gsn_error_print(stderr);
         return rc;
     }
-    return fixture_solver_from_model(c, dt, s);
+    if (c->integration != GSN_INTEGRATION_GAUSS)
+        return fixture_solver_from_model(c, dt, s);
+    int cell_count = 0;
+    double *cells =
+        fixture_lattice_cells(count, s->model.position, &cell_count);
+    rc = cells ? fixture_solver_from_cells(c, dt, cells, cell_count, s)
+               : GSN_ERR_MEMORY;
+    free(cells);
+    return rc;
+}
+
+/* The step's increment is a linear field: previous_displacement = d, then
+ * d_I = A X_I at every particle (A the displacement gradient, row-major;
+ * X the reference positions). */
+static inline void fixture_set_linear_field(struct gsn_explicit *e,
+                                            const double A[9])
+{
+    const double *X = e->quadrature->rk->position;
+    memcpy(e->previous_displacement, e->displacement,
+           sizeof(double) * 3 * (size_t)e->particle_count);
+    for (int i = 0; i < e->particle_count; ++i)
+        for (int r = 0; r < 3; ++r)
+            e->displacement[3 * i + r] = A[3 * r] * X[3 * i] +
+                                         A[3 * r + 1] * X[3 * i + 1] +
+                                         A[3 * r + 2] * X[3 * i + 2];
+}
+
+/* Loads the case at path; gauss_points > 0 replaces its integration by
+ * Gauss points, gauss_points a direction (on the lattice cells of a box,
+ * or the tetrahedra of a gmsh model). Prints the error chain on failure. */
+static inline int fixture_case_load(const char *path, int gauss_points,
+                                    struct gsn_case *c)
+{
+    int rc = gsn_case_load(path, c);
+    if (rc != GSN_OK) {
+        gsn_error_print(stderr);
+        return rc;
+    }
+    if (gauss_points > 0) {
+        c->integration = GSN_INTEGRATION_GAUSS;
+        c->gauss_points = gauss_points;
+    }
+    return GSN_OK;
+}
+
+/* fixture_case_load, then fixture_solver_create. */
+static inline int fixture_solver_case(const char *path, int gauss_points,
+                                      const int count[3], const double lo[3],
+                                      const double hi[3], double jitter,
+                                      double dt, struct gsn_case *c,
+                                      struct fixture_solver *s)
+{
+    memset(s, 0, sizeof *s);
+    int rc = fixture_case_load(path, gauss_points, c);
+    return rc == GSN_OK ? fixture_solver_create(c, count, lo, hi, jitter, dt, s)
+                        : rc;
 }
 
 /* The same on the particles gmsh makes for the case's geometry (pre, with
@@ -162,6 +253,30 @@ static inline int fixture_solver_from_gmsh(const struct gsn_case *c, double dt,
         return rc;
     }
     return fixture_solver_from_model(c, dt, s);
+}
+
+/* The frequency (Hz) of a signal value(time), count samples, from its
+ * upward crossings of level (linear between samples): (crossings - 1)
+ * over the time from the first to the last; *periods gets crossings - 1.
+ * 0 with fewer than two crossings. */
+static inline double fixture_crossing_frequency(const double *time,
+                                                const double *value, int count,
+                                                double level, int *periods)
+{
+    double first = -1.0, last = -1.0;
+    int crossings = 0;
+    for (int i = 1; i < count; ++i) {
+        double a = value[i - 1] - level, b = value[i] - level;
+        if (a < 0.0 && b >= 0.0) {
+            double t = time[i - 1] + (time[i] - time[i - 1]) * (-a) / (b - a);
+            if (crossings == 0)
+                first = t;
+            last = t;
+            crossings++;
+        }
+    }
+    *periods = crossings > 0 ? crossings - 1 : 0;
+    return crossings > 1 ? (crossings - 1) / (last - first) : 0.0;
 }
 
 /* Reads the columns `names` (count of them) of folder/history.csv into

@@ -134,8 +134,9 @@ struct gsn_dataset_info {
       3, "N", "local damping force of the last step on the coefficients")      \
     X(GSN_CHECKPOINT_MATERIAL_STATE, "checkpoint/material_state",              \
       GSN_H5_DOUBLE, 0, "various",                                             \
-      "state variables of the material model at the nodal points; columns: "   \
-      "the model's state size, named by the attribute 'names'")
+      "state variables of the material model at the main integration points "  \
+      "(nodal or Gauss points); columns: the model's state size, named by "    \
+      "the attribute 'names'")
 
 #define GSN_DATASET_ENUM(id, path, type, columns, units, description) id,
 enum gsn_model_dataset {

@@ -144,7 +144,9 @@ struct gsn_quadrature {
     double *point_weight;   /* m^3 */
     double *point_position; /* point_count x 3, m */
     int *point_particle;    /* nodal and stabilization points: L; Gauss: -1 */
-    struct gsn_shape_rows gradient; /* rows = points, value NULL */
+    /* Rows = points. value: Psi_I at the Gauss points (their lumped mass,
+     * eq. (28)); NULL for nodal integration (particle_values has it). */
+    struct gsn_shape_rows gradient;
     /* Psi_I(X_J), rows = particles J: lumped mass eq. (28), body force,
      * u(X_J) = sum_I Psi_I(X_J) d_I. */
     struct gsn_shape_rows particle_values;
