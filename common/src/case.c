@@ -750,7 +750,8 @@ static int read_damping(struct reader *r, const yaml_node_t *root,
 static int read_output(struct reader *r, const yaml_node_t *root,
                        struct gsn_case *c)
 {
-    static const char *const keys[] = {"every", "fields", "mirror", NULL};
+    static const char *const keys[] = {"every", "times", "fields", "mirror",
+                                       NULL};
     c->output_every = c->time_end / GSN_DEFAULT_FRAMES;
     yaml_node_t *node = mapping_find(r, root, "output");
     if (!node)
@@ -998,7 +999,9 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
                 c->time_step);
     fprintf(out, ", ramp: %.17g}\n", c->time_ramp);
     fprintf(out, "damping: {local: %.17g}\n", c->damping_local);
-    fprintf(out, "output: {every: %.17g", c->output_every);
+    fputs("output: {", out);
+    if (c->output_every > 0.0)
+        fprintf(out, "every: %.17g, ", c->output_every);
     write_output_economy(c, out);
     fputs("}\n", out);
     GSN_CHECK(!ferror(out), GSN_ERR_IO, "cannot write the resolved case");
@@ -1160,11 +1163,59 @@ static int read_symmetry(struct reader *r, const yaml_node_t *entry,
     return GSN_OK;
 }
 
-/* output.fields: which frame fields are written; output.mirror: the
- * symmetry entry post mirrors the half model across. */
+/* output.times: frames at the listed times, increasing, in (0, time.end];
+ * alone they replace output.every's default (docs/economy.md, "Outputs"). */
+static int read_output_times(struct reader *r, const yaml_node_t *output,
+                             struct gsn_case *c)
+{
+    yaml_node_t *times = mapping_find(r, output, "times");
+    if (!times)
+        return GSN_OK;
+    int count = times->type == YAML_SEQUENCE_NODE
+                    ? (int)(times->data.sequence.items.top -
+                            times->data.sequence.items.start)
+                    : -1;
+    GSN_CHECK(count > 0, GSN_ERR_INPUT,
+              "%s:%d: 'output.times' must be a list of one or more times in "
+              "s, e.g. [0.5, 1.0, 2.5], got %s",
+              r->path, node_line(times), node_kind(r, times));
+    GSN_CHECK(count <= GSN_MAX_OUTPUT_TIMES, GSN_ERR_INPUT,
+              "%s:%d: 'output.times' lists %d times, at most %d; use "
+              "'output.every' for regular frames",
+              r->path, node_line(times), count, GSN_MAX_OUTPUT_TIMES);
+    for (int i = 0; i < count; ++i) {
+        yaml_node_t *item = node_get(r, times->data.sequence.items.start[i]);
+        char name[64];
+        snprintf(name, sizeof name, "output.times[%d]", i);
+        double t = 0.0;
+        GSN_CALL(parse_number(r, item, name, &t));
+        GSN_CHECK(t > 0.0, GSN_ERR_INPUT,
+                  "%s:%d: '%s' must be > 0 s, got %g; the frame at t = 0 is "
+                  "always written",
+                  r->path, node_line(item), name, t);
+        GSN_CHECK(i == 0 || t > c->output_times[i - 1], GSN_ERR_INPUT,
+                  "%s:%d: '%s' is %g s, not after output.times[%d] = %g s; "
+                  "list the times once each, in increasing order",
+                  r->path, node_line(item), name, t, i - 1,
+                  i ? c->output_times[i - 1] : 0.0);
+        GSN_CHECK(t <= c->time_end, GSN_ERR_INPUT,
+                  "%s:%d: '%s' is %g s, after time.end = %g s; list times up "
+                  "to time.end, or raise time.end",
+                  r->path, node_line(item), name, t, c->time_end);
+        c->output_times[i] = t;
+    }
+    c->output_time_count = count;
+    if (!mapping_find(r, output, "every"))
+        c->output_every = 0.0; /* the listed times alone */
+    return GSN_OK;
+}
+
+/* output.times (above); output.fields: which frame fields are written;
+ * output.mirror: the symmetry entry post mirrors the half model across. */
 static int read_output_economy(struct reader *r, const yaml_node_t *output,
                                struct gsn_case *c)
 {
+    GSN_CALL(read_output_times(r, output, c));
     static const char *names[GSN_FRAME_FIELD_COUNT + 1];
     for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f)
         names[f] = gsn_frame_fields[f].path;
@@ -1232,7 +1283,13 @@ static void write_refinements(const struct gsn_case *c, FILE *out)
 
 static void write_output_economy(const struct gsn_case *c, FILE *out)
 {
-    fputs(", fields: [", out);
+    if (c->output_time_count) {
+        fputs("times: [", out);
+        for (int i = 0; i < c->output_time_count; ++i)
+            fprintf(out, "%s%.17g", i ? ", " : "", c->output_times[i]);
+        fputs("], ", out);
+    }
+    fputs("fields: [", out);
     int first = 1;
     for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f)
         if (c->output_fields & (1u << f)) {
