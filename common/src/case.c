@@ -58,6 +58,15 @@ static int is_null_scalar(const yaml_node_t *node)
            strcmp(t, "Null") == 0 || strcmp(t, "NULL") == 0;
 }
 
+/* The number of items of a list node, -1 for any other node. */
+static int sequence_length(const yaml_node_t *node)
+{
+    if (node->type != YAML_SEQUENCE_NODE)
+        return -1;
+    return (int)(node->data.sequence.items.top -
+                 node->data.sequence.items.start);
+}
+
 /* "a list of 2", "a mapping", "nothing (null)" or the scalar quoted, for
  * messages; the text lives in the reader until the next call. */
 static const char *node_kind(struct reader *r, const yaml_node_t *node)
@@ -71,8 +80,7 @@ static const char *node_kind(struct reader *r, const yaml_node_t *node)
         return r->kind_text;
     case YAML_SEQUENCE_NODE:
         snprintf(r->kind_text, sizeof r->kind_text, "a list of %d",
-                 (int)(node->data.sequence.items.top -
-                       node->data.sequence.items.start));
+                 sequence_length(node));
         return r->kind_text;
     case YAML_MAPPING_NODE:
         return "a mapping";
@@ -579,10 +587,7 @@ static int read_vector3(struct reader *r, const yaml_node_t *node,
                         const char *name, int allow_null, int present[3],
                         double value[3])
 {
-    int count = node->type == YAML_SEQUENCE_NODE
-                    ? (int)(node->data.sequence.items.top -
-                            node->data.sequence.items.start)
-                    : -1;
+    int count = sequence_length(node);
     GSN_CHECK(count == 3, GSN_ERR_INPUT,
               "%s:%d: '%s' must be a list of 3 %s [x, y, z], got %s", r->path,
               node_line(node), name, allow_null ? "numbers or null" : "numbers",
@@ -1049,10 +1054,7 @@ static int read_refinement(struct reader *r, const yaml_node_t *node, int index,
               r->path, f->line, context);
     if (box) {
         f->kind = GSN_REFINE_BOX;
-        int count = box->type == YAML_SEQUENCE_NODE
-                        ? (int)(box->data.sequence.items.top -
-                                box->data.sequence.items.start)
-                        : -1;
+        int count = sequence_length(box);
         GSN_CHECK(count == 6, GSN_ERR_INPUT,
                   "%s:%d: '%s.box' must be a list of 6 numbers [x0, y0, z0, "
                   "x1, y1, z1] (m), got %s",
@@ -1122,8 +1124,7 @@ static int read_refinements(struct reader *r, const yaml_node_t *particles,
               "x1, y1, z1], spacing: ...} or {surface: NAME, spacing: ..., "
               "distance: ...} entries, got %s",
               r->path, node_line(node), node_kind(r, node));
-    int count =
-        (int)(node->data.sequence.items.top - node->data.sequence.items.start);
+    int count = sequence_length(node);
     GSN_CHECK(count <= GSN_MAX_REFINEMENTS, GSN_ERR_INPUT,
               "%s:%d: 'particles.refine' has %d entries, at most %d", r->path,
               node_line(node), count, GSN_MAX_REFINEMENTS);
@@ -1171,10 +1172,7 @@ static int read_output_times(struct reader *r, const yaml_node_t *output,
     yaml_node_t *times = mapping_find(r, output, "times");
     if (!times)
         return GSN_OK;
-    int count = times->type == YAML_SEQUENCE_NODE
-                    ? (int)(times->data.sequence.items.top -
-                            times->data.sequence.items.start)
-                    : -1;
+    int count = sequence_length(times);
     GSN_CHECK(count > 0, GSN_ERR_INPUT,
               "%s:%d: 'output.times' must be a list of one or more times in "
               "s, e.g. [0.5, 1.0, 2.5], got %s",
@@ -1224,10 +1222,7 @@ static int read_output_economy(struct reader *r, const yaml_node_t *output,
     if (fields) {
         char list[256];
         join_keys(names, list, sizeof list);
-        int count = fields->type == YAML_SEQUENCE_NODE
-                        ? (int)(fields->data.sequence.items.top -
-                                fields->data.sequence.items.start)
-                        : -1;
+        int count = sequence_length(fields);
         GSN_CHECK(count > 0, GSN_ERR_INPUT,
                   "%s:%d: 'output.fields' must be a list of one or more of "
                   "%s, got %s",

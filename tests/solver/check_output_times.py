@@ -16,16 +16,11 @@ import xml.etree.ElementTree as ET
 
 import h5py
 
+from checking import check, finish
+
 outdir, name = sys.argv[1], sys.argv[2]
 end, every = float(sys.argv[3]), float(sys.argv[4])
 times = [float(t) for t in sys.argv[5:]]
-failures = 0
-
-
-def check(condition, message):
-    global failures
-    print(("ok   " if condition else "FAIL ") + message)
-    failures += 0 if condition else 1
 
 
 with h5py.File(f"{outdir}/results.h5", "r") as results:
@@ -61,4 +56,4 @@ with open(f"{outdir}/history.csv") as history:
     rows = list(csv.DictReader(history))
 check([int(r["step"]) for r in rows] == steps,
       f"history.csv has a row at every frame's step ({len(rows)} rows)")
-sys.exit(1 if failures else 0)
+finish()

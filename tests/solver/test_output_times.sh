@@ -4,12 +4,7 @@
 # output.every added; check_output_times.py finds each frame at the step
 # nearest its time in results.h5, the .pvd and history.csv.
 # usage: test_output_times.sh GEOSCNI   (run from tests/solver)
-set -u
-geoscni=$1
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. ./cli_testing.sh
 times="0.013 0.049 0.05 0.0801"
 
 "$geoscni" run cases/times_box.yaml -o "$out/times" --no-pictures -q ||
@@ -27,5 +22,4 @@ grep -q "every: 0.04, times: \[0.013, 0.04, 0.049" "$out/times_every.yaml" ||
     fail "run times_every"
 /usr/bin/python3 check_output_times.py "$out/both" times_every 0.1 0.04 \
     $times 0.04 || fail "output.times with output.every"
-echo "$failures failures"
-[ "$failures" -eq 0 ]
+finish

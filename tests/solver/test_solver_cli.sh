@@ -4,12 +4,7 @@
 # forced, the run stops as unstable with exit 3 naming step, time and
 # particle, and the frames written before stay readable; solve without
 # model.h5 says to run pre first (exit 2).
-set -u
-geoscni=$1
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. ./cli_testing.sh
 
 "$geoscni" solve cases/cli_box.yaml -o "$out/none" -q 2>"$out/err"
 [ $? -eq 2 ] || fail "solve without model.h5 should exit 2"
@@ -46,5 +41,4 @@ status=$?
 [ $status -eq 3 ] || fail "run of a failing case should exit 3, got $status"
 [ -s "$out/run/cli_box_big_step.pvd" ] || fail "run did not post-process the frames before the failure"
 grep -q "the frames before the failure are in" "$out/err" || fail "message: $(cat "$out/err")"
-echo "$failures failures"
-[ "$failures" -eq 0 ]
+finish
