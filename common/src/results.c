@@ -105,7 +105,8 @@ int gsn_results_frames_drop_after(hid_t file, int step, int *count)
                   "cannot delete frame group '%s'", name);
     }
     if (kept < *count)
-        GSN_CALL(gsn_h5_attr_write_int(file, GSN_RESULTS_ATTR_FRAME_COUNT, kept));
+        GSN_CALL(
+            gsn_h5_attr_write_int(file, GSN_RESULTS_ATTR_FRAME_COUNT, kept));
     *count = kept;
     return GSN_OK;
 }

@@ -117,11 +117,11 @@ struct gsn_case {
     int refinement_count;
     struct gsn_refinement refinements[GSN_MAX_REFINEMENTS];
     unsigned output_fields; /* bit f: frame field f (schema.h) is written */
-    int output_time_count;  /* entries of output.times */
-    double output_times[GSN_MAX_OUTPUT_TIMES]; /* s, increasing, in
-                                                  (0, time.end] */
     char output_mirror[GSN_NAME_SIZE]; /* symmetry surface post mirrors
                                           across, or "" */
+    /* output.times: frames at these times (s, increasing, in (0, end]) */
+    int output_time_count;
+    double output_times[GSN_MAX_OUTPUT_TIMES];
 };
 
 /* Reads and checks a case file. On error returns GSN_ERR_INPUT (or
