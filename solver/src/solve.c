@@ -324,10 +324,10 @@ static int write_output(struct run *r, int final)
 
 /* The first frame time of the case, a multiple of output.every or an entry
  * of output.times, that the step at `time` has not served; INFINITY if none
- * is left. A frame time T is served by the first step with t >= T - dt/2,
- * the step nearest T (docs/economy.md, "Frame times"). A function of the
- * step's time alone, so a restart schedules the frames of the uninterrupted
- * run. */
+ * is left. A frame time T is served by the first step with T <= t + dt/2,
+ * the step nearest T (docs/economy.md, "Frame times"; run_loop tests the
+ * same sum). A function of the step's time alone, so a restart schedules
+ * the frames of the uninterrupted run. */
 static double next_frame_time(const struct gsn_case *c, double time, double dt)
 {
     double served = time + 0.5 * dt;
@@ -460,7 +460,7 @@ static int run_loop(struct run *r)
         /* Frames at the steps nearest the frame times before the end, and
          * one at the last step (not also one a step before it). */
         int last = e->step == r->total_steps;
-        int due = e->time >= r->next_frame_time - 0.5 * e->dt &&
+        int due = r->next_frame_time <= e->time + 0.5 * e->dt &&
                   r->next_frame_time < r->c->time_end - 0.5 * e->dt;
         if (due || last) {
             GSN_CALL(write_output(r, last));
