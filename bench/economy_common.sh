@@ -1,5 +1,16 @@
-# Shared by bench/economy_graded.sh and bench/economy_symmetry.sh (sourced):
-# needs $geoscni, $work, $end and $threads.
+# Shared by the economy benches (sourced): run, peak, particles and step
+# need $geoscni, $work, $end and $threads; curve needs nothing.
+
+# curve HISTORY [STEP]: the footing load (MN) at every STEP m of settlement
+# (default 0.025), interpolated linearly between the history's rows.
+curve() {
+    awk -F, -v step="${2:-0.025}" '
+        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_uz") u = i; if ($i == "footing_fz") f = i }; next }
+        { s = -$u; q = -$f / 1e6
+          while (next_s + step <= s + 1e-12) { next_s += step
+              printf "%.3f %.4f\n", next_s, prev_q + (q - prev_q) * (next_s - prev_s) / (s - prev_s) }
+          prev_s = s; prev_q = q }' "$1"
+}
 
 # run NAME CASE: the case cut to END s, pre + solve; prints the wall time.
 run() {

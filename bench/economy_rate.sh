@@ -43,15 +43,7 @@ for run in fast paper; do
     "$geoscni" solve "$out/$run/case.yaml" -o "$out/$run" -q
     echo "$start $(date +%s.%N)" | awk '{printf "%.1f\n", $2 - $1}' >"$out/$run/wall"
 done
-# The footing load (MN) at every 0.025 m of settlement, interpolated.
-curve() {
-    awk -F, -v step=0.025 '
-        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_uz") u = i; if ($i == "footing_fz") f = i }; next }
-        { s = -$u; q = -$f / 1e6
-          while (next_s + step <= s + 1e-12) { next_s += step
-              printf "%.3f %.4f\n", next_s, prev_q + (q - prev_q) * (next_s - prev_s) / (s - prev_s) }
-          prev_s = s; prev_q = q }' "$1"
-}
+. "$root/bench/economy_common.sh"
 curve "$out/paper/history.csv" >"$out/paper.curve"
 curve "$out/fast/history.csv" >"$out/fast.curve"
 echo "settlement (m)   paper rate (MN)   fast (MN)   difference"

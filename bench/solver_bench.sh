@@ -22,9 +22,11 @@ geoscni=$root/$build/bin/geoscni
 [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
 work=$(mktemp -d /tmp/geoscni_solver_bench.XXXXXX)
 trap 'rm -rf "$work"' EXIT
-# The case with the run cut to STEPS steps of 1e-3 s.
+# The case with the run cut to STEPS steps of 1e-3 s (and no ramp, which
+# may be longer than the cut run).
 sed -e "s|^geometry: *|geometry: $(dirname "$case_file")/|" \
     -e "s|^\( *end:\).*|\1 $(echo "$steps" | awk '{print $1 * 1e-3}')|" \
+    -e "s|^\( *ramp:\).*|\1 0|" \
     -e "s|^\( *every:\).*|\1 1000|" "$case_file" >"$work/case.yaml"
 if [ -n "$integration" ]; then
     sed -i -e "s|^integration:.*|integration: $integration|" "$work/case.yaml"

@@ -58,6 +58,15 @@ static int is_null_scalar(const yaml_node_t *node)
            strcmp(t, "Null") == 0 || strcmp(t, "NULL") == 0;
 }
 
+/* The number of items of a list node, -1 for any other node. */
+static int sequence_length(const yaml_node_t *node)
+{
+    if (node->type != YAML_SEQUENCE_NODE)
+        return -1;
+    return (int)(node->data.sequence.items.top -
+                 node->data.sequence.items.start);
+}
+
 /* "a list of 2", "a mapping", "nothing (null)" or the scalar quoted, for
  * messages; the text lives in the reader until the next call. */
 static const char *node_kind(struct reader *r, const yaml_node_t *node)
@@ -71,8 +80,7 @@ static const char *node_kind(struct reader *r, const yaml_node_t *node)
         return r->kind_text;
     case YAML_SEQUENCE_NODE:
         snprintf(r->kind_text, sizeof r->kind_text, "a list of %d",
-                 (int)(node->data.sequence.items.top -
-                       node->data.sequence.items.start));
+                 sequence_length(node));
         return r->kind_text;
     case YAML_MAPPING_NODE:
         return "a mapping";
@@ -579,10 +587,7 @@ static int read_vector3(struct reader *r, const yaml_node_t *node,
                         const char *name, int allow_null, int present[3],
                         double value[3])
 {
-    int count = node->type == YAML_SEQUENCE_NODE
-                    ? (int)(node->data.sequence.items.top -
-                            node->data.sequence.items.start)
-                    : -1;
+    int count = sequence_length(node);
     GSN_CHECK(count == 3, GSN_ERR_INPUT,
               "%s:%d: '%s' must be a list of 3 %s [x, y, z], got %s", r->path,
               node_line(node), name, allow_null ? "numbers or null" : "numbers",
@@ -766,7 +771,8 @@ static int read_kinematics(struct reader *r, const yaml_node_t *root,
 static int read_output(struct reader *r, const yaml_node_t *root,
                        struct gsn_case *c)
 {
-    static const char *const keys[] = {"every", "fields", "mirror", NULL};
+    static const char *const keys[] = {"every", "times", "fields", "mirror",
+                                       NULL};
     c->output_every = c->time_end / GSN_DEFAULT_FRAMES;
     yaml_node_t *node = mapping_find(r, root, "output");
     if (!node)
@@ -1016,7 +1022,9 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
     fprintf(out, ", ramp: %.17g}\n", c->time_ramp);
     fprintf(out, "damping: {local: %.17g}\n", c->damping_local);
     fprintf(out, "kinematics: %s\n", c->small_strain ? "small" : "large");
-    fprintf(out, "output: {every: %.17g", c->output_every);
+    fputs("output: {", out);
+    if (c->output_every > 0.0)
+        fprintf(out, "every: %.17g, ", c->output_every);
     write_output_economy(c, out);
     fputs("}\n", out);
     GSN_CHECK(!ferror(out), GSN_ERR_IO, "cannot write the resolved case");
@@ -1064,10 +1072,7 @@ static int read_refinement(struct reader *r, const yaml_node_t *node, int index,
               r->path, f->line, context);
     if (box) {
         f->kind = GSN_REFINE_BOX;
-        int count = box->type == YAML_SEQUENCE_NODE
-                        ? (int)(box->data.sequence.items.top -
-                                box->data.sequence.items.start)
-                        : -1;
+        int count = sequence_length(box);
         GSN_CHECK(count == 6, GSN_ERR_INPUT,
                   "%s:%d: '%s.box' must be a list of 6 numbers [x0, y0, z0, "
                   "x1, y1, z1] (m), got %s",
@@ -1137,8 +1142,7 @@ static int read_refinements(struct reader *r, const yaml_node_t *particles,
               "x1, y1, z1], spacing: ...} or {surface: NAME, spacing: ..., "
               "distance: ...} entries, got %s",
               r->path, node_line(node), node_kind(r, node));
-    int count =
-        (int)(node->data.sequence.items.top - node->data.sequence.items.start);
+    int count = sequence_length(node);
     GSN_CHECK(count <= GSN_MAX_REFINEMENTS, GSN_ERR_INPUT,
               "%s:%d: 'particles.refine' has %d entries, at most %d", r->path,
               node_line(node), count, GSN_MAX_REFINEMENTS);
@@ -1178,11 +1182,56 @@ static int read_symmetry(struct reader *r, const yaml_node_t *entry,
     return GSN_OK;
 }
 
-/* output.fields: which frame fields are written; output.mirror: the
- * symmetry entry post mirrors the half model across. */
+/* output.times: frames at the listed times, increasing, in (0, time.end];
+ * alone they replace output.every's default (docs/economy.md, "Outputs"). */
+static int read_output_times(struct reader *r, const yaml_node_t *output,
+                             struct gsn_case *c)
+{
+    yaml_node_t *times = mapping_find(r, output, "times");
+    if (!times)
+        return GSN_OK;
+    int count = sequence_length(times);
+    GSN_CHECK(count > 0, GSN_ERR_INPUT,
+              "%s:%d: 'output.times' must be a list of one or more times in "
+              "s, e.g. [0.5, 1.0, 2.5], got %s",
+              r->path, node_line(times), node_kind(r, times));
+    GSN_CHECK(count <= GSN_MAX_OUTPUT_TIMES, GSN_ERR_INPUT,
+              "%s:%d: 'output.times' lists %d times, at most %d; use "
+              "'output.every' for regular frames",
+              r->path, node_line(times), count, GSN_MAX_OUTPUT_TIMES);
+    for (int i = 0; i < count; ++i) {
+        yaml_node_t *item = node_get(r, times->data.sequence.items.start[i]);
+        char name[64];
+        snprintf(name, sizeof name, "output.times[%d]", i);
+        double t = 0.0;
+        GSN_CALL(parse_number(r, item, name, &t));
+        GSN_CHECK(t > 0.0, GSN_ERR_INPUT,
+                  "%s:%d: '%s' must be > 0 s, got %g; the frame at t = 0 is "
+                  "always written",
+                  r->path, node_line(item), name, t);
+        GSN_CHECK(i == 0 || t > c->output_times[i - 1], GSN_ERR_INPUT,
+                  "%s:%d: '%s' is %g s, not after output.times[%d] = %g s; "
+                  "list the times once each, in increasing order",
+                  r->path, node_line(item), name, t, i - 1,
+                  i ? c->output_times[i - 1] : 0.0);
+        GSN_CHECK(t <= c->time_end, GSN_ERR_INPUT,
+                  "%s:%d: '%s' is %g s, after time.end = %g s; list times up "
+                  "to time.end, or raise time.end",
+                  r->path, node_line(item), name, t, c->time_end);
+        c->output_times[i] = t;
+    }
+    c->output_time_count = count;
+    if (!mapping_find(r, output, "every"))
+        c->output_every = 0.0; /* the listed times alone */
+    return GSN_OK;
+}
+
+/* output.times (above); output.fields: which frame fields are written;
+ * output.mirror: the symmetry entry post mirrors the half model across. */
 static int read_output_economy(struct reader *r, const yaml_node_t *output,
                                struct gsn_case *c)
 {
+    GSN_CALL(read_output_times(r, output, c));
     static const char *names[GSN_FRAME_FIELD_COUNT + 1];
     for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f)
         names[f] = gsn_frame_fields[f].path;
@@ -1191,10 +1240,7 @@ static int read_output_economy(struct reader *r, const yaml_node_t *output,
     if (fields) {
         char list[256];
         join_keys(names, list, sizeof list);
-        int count = fields->type == YAML_SEQUENCE_NODE
-                        ? (int)(fields->data.sequence.items.top -
-                                fields->data.sequence.items.start)
-                        : -1;
+        int count = sequence_length(fields);
         GSN_CHECK(count > 0, GSN_ERR_INPUT,
                   "%s:%d: 'output.fields' must be a list of one or more of "
                   "%s, got %s",
@@ -1250,7 +1296,13 @@ static void write_refinements(const struct gsn_case *c, FILE *out)
 
 static void write_output_economy(const struct gsn_case *c, FILE *out)
 {
-    fputs(", fields: [", out);
+    if (c->output_time_count) {
+        fputs("times: [", out);
+        for (int i = 0; i < c->output_time_count; ++i)
+            fprintf(out, "%s%.17g", i ? ", " : "", c->output_times[i]);
+        fputs("], ", out);
+    }
+    fputs("fields: [", out);
     int first = 1;
     for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f)
         if (c->output_fields & (1u << f)) {

@@ -85,6 +85,32 @@ int gsn_results_frame_count(hid_t file, int *count)
     return GSN_OK;
 }
 
+int gsn_results_frames_drop_after(hid_t file, int step, int *count)
+{
+    GSN_CALL(gsn_results_frame_count(file, count));
+    int kept = *count;
+    for (; kept > 0; --kept) {
+        char name[64];
+        GSN_CALL(frame_group_name(kept - 1, name, sizeof name));
+        hid_t group = H5Gopen2(file, name, H5P_DEFAULT);
+        GSN_CHECK(group >= 0, GSN_ERR_INPUT,
+                  "frame group '%s' is missing from the results file", name);
+        int frame_step = 0;
+        int rc = gsn_h5_attr_read_int(group, GSN_FRAME_ATTR_STEP, &frame_step);
+        H5Gclose(group);
+        GSN_CALL(rc);
+        if (frame_step <= step)
+            break;
+        GSN_CHECK(H5Ldelete(file, name, H5P_DEFAULT) >= 0, GSN_ERR_IO,
+                  "cannot delete frame group '%s'", name);
+    }
+    if (kept < *count)
+        GSN_CALL(
+            gsn_h5_attr_write_int(file, GSN_RESULTS_ATTR_FRAME_COUNT, kept));
+    *count = kept;
+    return GSN_OK;
+}
+
 int gsn_results_frame_read(hid_t file, int index, struct gsn_frame *frame)
 {
     int count = 0;

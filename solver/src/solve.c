@@ -328,6 +328,26 @@ static int write_output(struct run *r, int final)
     return GSN_OK;
 }
 
+/* The first frame time of the case, a multiple of output.every or an entry
+ * of output.times, that the step at `time` has not served; INFINITY if none
+ * is left. A frame time T is served by the first step with T <= t + dt/2,
+ * the step nearest T (docs/economy.md, "Frame times"; run_loop tests the
+ * same sum). A function of the step's time alone, so a restart schedules
+ * the frames of the uninterrupted run. */
+static double next_frame_time(const struct gsn_case *c, double time, double dt)
+{
+    double served = time + 0.5 * dt;
+    double next = INFINITY;
+    if (c->output_every > 0.0)
+        next = (floor(served / c->output_every) + 1.0) * c->output_every;
+    for (int i = 0; i < c->output_time_count; ++i)
+        if (c->output_times[i] > served) {
+            next = fmin(next, c->output_times[i]);
+            break;
+        }
+    return next;
+}
+
 /* The time step: auto (safety x stable) or the case's, refused above the
  * stable one unless forced. */
 static int choose_time_step(struct run *r)
@@ -437,22 +457,20 @@ static int check_energy(struct run *r)
 static int run_loop(struct run *r)
 {
     struct gsn_explicit *e = r->explicit_loop;
-    const double every = r->c->output_every;
     double started = now_seconds(), last_print = started;
     long first = e->step;
     int quiet = r->options->quiet;
     while (e->step < r->total_steps) {
         GSN_CALL(gsn_explicit_step(e));
         GSN_CALL(check_energy(r));
-        /* Frames at the multiples of output.every before the end, and one
-         * at the last step (not also one a step before it). */
+        /* Frames at the steps nearest the frame times before the end, and
+         * one at the last step (not also one a step before it). */
         int last = e->step == r->total_steps;
-        int due = e->time >= r->next_frame_time - 0.5 * e->dt &&
+        int due = r->next_frame_time <= e->time + 0.5 * e->dt &&
                   r->next_frame_time < r->c->time_end - 0.5 * e->dt;
         if (due || last) {
             GSN_CALL(write_output(r, last));
-            while (r->next_frame_time <= e->time + 0.5 * e->dt)
-                r->next_frame_time += every;
+            r->next_frame_time = next_frame_time(r->c, e->time, e->dt);
         }
         double t = now_seconds();
         if (!quiet && (t - last_print > 0.5 || last) &&
@@ -484,7 +502,7 @@ static int open_outputs(struct run *r)
         GSN_CHECK(r->history, GSN_ERR_IO, "%s: cannot create", r->history_path);
         GSN_CALL(write_history_header(r));
         GSN_CALL(write_output(r, 0)); /* the frame at t = 0 */
-        r->next_frame_time = r->c->output_every;
+        r->next_frame_time = next_frame_time(r->c, e->time, e->dt);
         return GSN_OK;
     }
     if (access(r->results_path, F_OK) == 0)
@@ -493,10 +511,11 @@ static int open_outputs(struct run *r)
                   r->results_path);
     GSN_CALL(gsn_h5_open(r->results_temporary, GSN_FILE_KIND_RESULTS, 1,
                          &r->results));
-    GSN_CALL(gsn_results_frame_count(r->results, &r->frame_count));
     GSN_CALL(read_checkpoint(r));
-    r->next_frame_time =
-        (floor(e->time / r->c->output_every + 1e-9) + 1.0) * r->c->output_every;
+    /* The checkpoint's step wrote a frame; later ones are written again. */
+    GSN_CALL(gsn_results_frames_drop_after(r->results, (int)e->step,
+                                           &r->frame_count));
+    r->next_frame_time = next_frame_time(r->c, e->time, e->dt);
     /* Keep the history rows up to the checkpoint, drop any later ones. */
     FILE *old = fopen(r->history_path, "r");
     GSN_CHECK(old, GSN_ERR_INPUT, "%s: missing; cannot restart",

@@ -1,5 +1,6 @@
 /* The economy keys of the case file (docs/economy.md): boundary
- * symmetry, particles.refine, output.fields and output.mirror land in the
+ * symmetry, particles.refine, output.times, output.fields and
+ * output.mirror land in the
  * struct, their defaults are the named constants, the resolved YAML reads
  * back to the same values bit for bit, and a refinement changes pre's
  * signature (a graded model is not mistaken for a uniform one). The
@@ -42,6 +43,27 @@ static void check_economy(const struct gsn_case *c)
                                    (1u << GSN_FRAME_DISPLACEMENT) |
                                    (1u << GSN_FRAME_DAMAGE));
     TEST_TRUE(strcmp(c->output_mirror, "cut") == 0);
+    /* frames every 0.5 s and at the two listed times */
+    TEST_NEAR(c->output_every, 0.5, 0.0);
+    TEST_INT(c->output_time_count, 2);
+    TEST_NEAR(c->output_times[0], 0.25, 0.0);
+    TEST_NEAR(c->output_times[1], 1.2, 0.0);
+}
+
+/* Writes c as resolved YAML and loads it back into again. */
+static void round_trip(const struct gsn_case *c, struct gsn_case *again)
+{
+    char path[] = "/tmp/geoscni-test-case-economy-XXXXXX";
+    int fd = mkstemp(path);
+    TEST_TRUE(fd >= 0);
+    FILE *out = fdopen(fd, "w");
+    TEST_INT(gsn_case_write_yaml(c, out), GSN_OK);
+    fclose(out);
+    int rc = gsn_case_load(path, again);
+    if (rc != GSN_OK)
+        gsn_error_print(stderr);
+    TEST_INT(rc, GSN_OK);
+    remove(path);
 }
 
 int main(void)
@@ -56,17 +78,7 @@ int main(void)
     TEST_INT(c.refinements[1].line, 8); /* the line of the surface entry */
 
     /* Round trip through the resolved YAML. */
-    char path[] = "/tmp/geoscni-test-case-economy-XXXXXX";
-    int fd = mkstemp(path);
-    TEST_TRUE(fd >= 0);
-    FILE *out = fdopen(fd, "w");
-    TEST_INT(gsn_case_write_yaml(&c, out), GSN_OK);
-    fclose(out);
-    rc = gsn_case_load(path, &again);
-    if (rc != GSN_OK)
-        gsn_error_print(stderr);
-    TEST_INT(rc, GSN_OK);
-    remove(path);
+    round_trip(&c, &again);
     check_economy(&again);
     for (int i = 0; i < 2; ++i) {
         again.refinements[i].line = c.refinements[i].line;
@@ -80,6 +92,19 @@ int main(void)
     TEST_INT(plain.output_fields, GSN_DEFAULT_OUTPUT_FIELDS);
     TEST_INT(plain.output_fields, (1u << GSN_FRAME_FIELD_COUNT) - 1);
     TEST_INT(plain.output_mirror[0], '\0');
+    TEST_INT(plain.output_time_count, 0);
+    TEST_NEAR(plain.output_every, plain.time_end / GSN_DEFAULT_FRAMES, 0.0);
+
+    /* output.times alone: frames at those times only (every = 0), also
+     * after a round trip; the default every comes back without times. */
+    c.output_every = 0.0;
+    round_trip(&c, &again);
+    TEST_NEAR(again.output_every, 0.0, 0.0);
+    TEST_INT(again.output_time_count, 2);
+    TEST_NEAR(again.output_times[1], 1.2, 0.0);
+    again.output_time_count = 0;
+    round_trip(&again, &plain);
+    TEST_NEAR(plain.output_every, plain.time_end / GSN_DEFAULT_FRAMES, 0.0);
 
     /* pre's signature changes with a refinement's spacing and width. */
     char first[GSN_PRE_SIGNATURE_SIZE], second[GSN_PRE_SIGNATURE_SIZE];

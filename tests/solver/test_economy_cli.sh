@@ -6,12 +6,7 @@
 # whole box's top force must be twice the half's; post notes the pictures
 # it cannot draw without damage and equivalent stress.
 # usage: test_economy_cli.sh GEOSCNI   (run from tests/solver)
-set -u
-geoscni=$1
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. ./cli_testing.sh
 
 "$geoscni" run cases/half_box.yaml -o "$out/half" >"$out/half.log" 2>&1 ||
     fail "run half_box: $(cat "$out/half.log")"
@@ -49,5 +44,4 @@ half=$(force "$out/half/history.csv")
 echo "top force: whole $whole N, half $half N (doubled $(echo "$half" | awk '{print 2 * $1}') N)"
 echo "$whole $half" | awk '{ d = (2 * $2 - $1) / $1; exit !(d < 0.05 && d > -0.05) }' ||
     fail "twice the half's force is not the whole's within 5 %"
-echo "$failures failures"
-[ "$failures" -eq 0 ]
+finish

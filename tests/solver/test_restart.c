@@ -2,7 +2,12 @@
  * half way and continued with --restart ends with the same bits as an
  * uninterrupted run, and a run on 1 thread ends with the same bits as on 2
  * (the passes gather in a fixed order). The block is large enough that the
- * loops do run in parallel. */
+ * loops do run in parallel.
+ * With output.times and output.every (issue 8, point 4) the restarted run
+ * writes the uninterrupted run's frames, at the same steps with the same
+ * bits, plus the frame where the first part ended; a frame that the first
+ * part wrote after its checkpoint (as a run killed between checkpoints
+ * leaves) is dropped and written again. */
 #include "geoscni/case.h"
 #include "geoscni/results.h"
 #include "geoscni/solver.h"
@@ -75,6 +80,90 @@ static int same_last_frame(const char *a, const char *b)
     return same;
 }
 
+/* Opens a results file and reads its frame count and particle count. */
+static hid_t results_open(const char *folder, int writable, int *count, int *n)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/results.h5", folder);
+    hid_t file = H5I_INVALID_HID;
+    TEST_INT(gsn_h5_open(path, GSN_FILE_KIND_RESULTS, writable, &file), GSN_OK);
+    TEST_INT(gsn_results_frame_count(file, count), GSN_OK);
+    struct gsn_dataset_info info = gsn_frame_fields[GSN_FRAME_DISPLACEMENT];
+    char dataset[64];
+    snprintf(dataset, sizeof dataset, GSN_FRAME_GROUP_FORMAT "/%s", 0,
+             info.path);
+    info.path = dataset;
+    size_t rows = 0;
+    TEST_INT(gsn_h5_rows(file, &info, &rows), GSN_OK);
+    *n = (int)rows;
+    return file;
+}
+
+/* Every frame of the uninterrupted run (whole) is in the restarted one
+ * (parts), at the same step with the same time and bits; parts has one
+ * frame more, at the step where its first part ended (cut_step), and its
+ * steps increase. */
+static void check_restart_frames(const char *whole, const char *parts,
+                                 int cut_step)
+{
+    int count[2], n = 0;
+    hid_t file[2] = {results_open(whole, 0, &count[0], &n),
+                     results_open(parts, 0, &count[1], &n)};
+    struct gsn_frame a, b;
+    TEST_INT(gsn_frame_allocate(&a, n), GSN_OK);
+    TEST_INT(gsn_frame_allocate(&b, n), GSN_OK);
+    int matched = 0, extra = 0, previous = -1, k = 0;
+    for (int j = 0; j < count[1]; ++j) {
+        TEST_INT(gsn_results_frame_read(file[1], j, &b), GSN_OK);
+        TEST_TRUE(b.step > previous);
+        previous = b.step;
+        if (k < count[0])
+            TEST_INT(gsn_results_frame_read(file[0], k, &a), GSN_OK);
+        if (k < count[0] && a.step == b.step) {
+            int same = a.time == b.time;
+            for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f)
+                same &= memcmp(a.field[f], b.field[f],
+                               sizeof(double) * (size_t)n *
+                                   gsn_frame_fields[f].columns) == 0;
+            TEST_TRUE(same);
+            matched++;
+            k++;
+        } else {
+            TEST_INT(b.step, cut_step);
+            extra++;
+        }
+    }
+    printf("%s vs %s: %d of %d frames at the same steps with the same bits, "
+           "%d more at the cut (step %d)\n",
+           whole, parts, matched, count[0], extra, cut_step);
+    TEST_INT(matched, count[0]);
+    TEST_TRUE(extra <= 1);
+    gsn_frame_free(&a);
+    gsn_frame_free(&b);
+    gsn_h5_close(&file[0]);
+    gsn_h5_close(&file[1]);
+}
+
+/* Appends to a run's results a copy of its last frame at a later step, as a
+ * run killed after a frame but before its checkpoint leaves; returns the
+ * step of the last frame before it. */
+static int append_frame_after_checkpoint(const char *folder)
+{
+    int count = 0, n = 0;
+    hid_t file = results_open(folder, 1, &count, &n);
+    struct gsn_frame frame;
+    TEST_INT(gsn_frame_allocate(&frame, n), GSN_OK);
+    TEST_INT(gsn_results_frame_read(file, count - 1, &frame), GSN_OK);
+    int step = frame.step;
+    frame.time *= (double)(step + 3) / step;
+    frame.step = step + 3;
+    frame.field[GSN_FRAME_DISPLACEMENT][0] += 1.0;
+    TEST_INT(gsn_results_frame_write(file, count, &frame), GSN_OK);
+    gsn_frame_free(&frame);
+    gsn_h5_close(&file);
+    return step;
+}
+
 int main(void)
 {
     test_begin();
@@ -91,8 +180,23 @@ int main(void)
     TEST_TRUE(same_last_frame(whole, parts));
     /* Bit for bit: sums are gathered in point order on any thread count. */
     TEST_TRUE(same_last_frame(whole, single));
-    char command[200];
-    snprintf(command, sizeof command, "rm -rf %s %s %s", whole, parts, single);
+
+    /* Frames every 0.01 s and at listed times (two on nearby steps, one on
+     * a multiple of every), across a restart. */
+    const double times[] = {0.0033, 0.0151, 0.0163, 0.02, 0.0271};
+    c.output_time_count = (int)(sizeof times / sizeof times[0]);
+    memcpy(c.output_times, times, sizeof times);
+    static char whole_times[] = "/tmp/geoscni-test-whole-times-XXXXXX";
+    static char parts_times[] = "/tmp/geoscni-test-parts-times-XXXXXX";
+    run(&c, c.time_end, 0, whole_times, 2);
+    run(&c, 0.55 * c.time_end, 0, parts_times, 2);
+    int cut_step = append_frame_after_checkpoint(parts_times);
+    run(&c, c.time_end, 1, parts_times, 2);
+    check_restart_frames(whole_times, parts_times, cut_step);
+
+    char command[400];
+    snprintf(command, sizeof command, "rm -rf %s %s %s %s %s", whole, parts,
+             single, whole_times, parts_times);
     TEST_INT(system(command), 0);
     return test_end("test_restart");
 }

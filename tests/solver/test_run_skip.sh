@@ -3,12 +3,8 @@
 # made from the same parameters: a second run skips all three; a changed
 # material reruns solve and post but not pre; a touched geometry reruns
 # everything; --rerun reruns everything.
-set -u
-geoscni=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. ./cli_testing.sh
+work=$out
 cp ../../geometries/box.geo "$work/box.geo"
 sed 's|^geometry: .*|geometry: box.geo|' cases/cli_box.yaml >"$work/case.yaml"
 sed 's|^material: {density: 2000|material: {density: 2100|' "$work/case.yaml" >"$work/heavier.yaml"
@@ -30,5 +26,4 @@ run "$work/case.yaml"
 [ "$(skipped)" -eq 0 ] || fail "a touched geometry skipped $(skipped) stages"
 run "$work/case.yaml" --rerun
 [ "$(skipped)" -eq 0 ] || fail "--rerun skipped a stage"
-echo "$failures failures"
-[ "$failures" -eq 0 ]
+finish

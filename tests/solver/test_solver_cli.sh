@@ -4,12 +4,7 @@
 # forced, the run stops as unstable with exit 3 naming step, time and
 # particle, and the frames written before stay readable; solve without
 # model.h5 says to run pre first (exit 2); a case with Gauss points runs.
-set -u
-geoscni=$1
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. ./cli_testing.sh
 
 "$geoscni" solve cases/cli_box.yaml -o "$out/none" -q 2>"$out/err"
 [ $? -eq 2 ] || fail "solve without model.h5 should exit 2"
@@ -75,5 +70,4 @@ OMP_NUM_THREADS=2 "$geoscni" solve "$out/gauss_full.yaml" -o "$out/gauss_restart
     fail "gauss: restart failed"
 [ "$(tail -1 "$out/gauss/history.csv")" = "$(tail -1 "$out/gauss_restart/history.csv")" ] ||
     fail "gauss: the restarted run ends elsewhere than the uninterrupted one"
-echo "$failures failures"
-[ "$failures" -eq 0 ]
+finish

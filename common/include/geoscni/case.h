@@ -11,6 +11,8 @@ extern "C" {
 #endif
 
 enum { GSN_PATH_SIZE = 4096, GSN_NAME_SIZE = 64, GSN_MAX_BOUNDARIES = 32 };
+/* Entries of output.times; regular frames take output.every. */
+enum { GSN_MAX_OUTPUT_TIMES = 1000 };
 
 /* Defaults of the optional keys. */
 #define GSN_DEFAULT_KERNEL_SUPPORT 1.5   /* a/h, seed paper section 6 */
@@ -20,7 +22,9 @@ enum { GSN_PATH_SIZE = 4096, GSN_NAME_SIZE = 64, GSN_MAX_BOUNDARIES = 32 };
 #define GSN_DEFAULT_TIME_STEP_SAFETY 0.8 /* fraction of the stable step */
 /* MSCNI weight of the sub-cells: Puso et al. (2008) use 1 (elastic). */
 #define GSN_DEFAULT_STABILIZATION_COEFFICIENT 1.0
-#define GSN_DEFAULT_FRAMES 100            /* output.every = end / this */
+/* output.every = end / this, when neither output.every nor output.times is
+ * given */
+#define GSN_DEFAULT_FRAMES 100
 #define GSN_DEFAULT_MAX_PARTICLES 5000000 /* more needs --force */
 
 /* Defaults of the economy keys (docs/economy.md). */
@@ -108,13 +112,17 @@ struct gsn_case {
                                 smoothly from 0 (0: at once) */
     double damping_local;    /* Cundall's local damping coefficient (0: none) */
     int small_strain;        /* kinematics: small (no geometry update) */
-    double output_every;     /* s between frames */
+    double output_every;     /* s between frames; 0: none (output.times
+                                alone) */
     /* economy (docs/economy.md) */
     int refinement_count;
     struct gsn_refinement refinements[GSN_MAX_REFINEMENTS];
     unsigned output_fields; /* bit f: frame field f (schema.h) is written */
     char output_mirror[GSN_NAME_SIZE]; /* symmetry surface post mirrors
                                           across, or "" */
+    /* output.times: frames at these times (s, increasing, in (0, end]) */
+    int output_time_count;
+    double output_times[GSN_MAX_OUTPUT_TIMES];
 };
 
 /* Reads and checks a case file. On error returns GSN_ERR_INPUT (or

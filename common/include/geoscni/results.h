@@ -36,6 +36,11 @@ int gsn_results_frame_write(hid_t file, int index,
 /* Number of complete frames in the file. */
 int gsn_results_frame_count(hid_t file, int *count);
 
+/* Deletes the frames written after the given step and sets *count to the
+ * frames left: a restart from a checkpoint at that step writes them again
+ * (a run stopped between checkpoints leaves such frames behind). */
+int gsn_results_frames_drop_after(hid_t file, int step, int *count);
+
 /* Reads frame index into a frame allocated for the file's particle count;
  * frame->present says which fields the file holds (the others are zeroed). */
 int gsn_results_frame_read(hid_t file, int index, struct gsn_frame *frame);
