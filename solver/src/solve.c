@@ -43,7 +43,9 @@
 struct boundary_set {
     int surface; /* index in the model */
     int count;
-    int *particle; /* the particles on the entry's surface */
+    int *particle;      /* the particles on the entry's surface */
+    int *reaction_mask; /* per particle: components whose constraint
+                           reaction this entry reports (bit k) */
 };
 
 struct run {
@@ -93,11 +95,34 @@ static int build_boundary_sets(struct run *r)
         struct boundary_set *set = &r->boundary[b];
         set->surface = surface;
         set->particle = malloc(sizeof(int) * (size_t)(m->particle_count + 1));
-        GSN_CHECK(set->particle, GSN_ERR_MEMORY, "out of memory");
+        set->reaction_mask = calloc((size_t)m->particle_count + 1, sizeof(int));
+        GSN_CHECK(set->particle && set->reaction_mask, GSN_ERR_MEMORY,
+                  "out of memory");
         for (int p = 0; p < m->particle_count; ++p)
             if (gsn_model_particle_on_surface(m, p, surface))
                 set->particle[set->count++] = p;
     }
+    return GSN_OK;
+}
+
+/* Each constrained component of a particle reports its reaction under one
+ * entry: the first in the case file whose surface holds the particle and
+ * constrains the component (a corner shared by two fixed faces is counted
+ * once). */
+static int claim_reactions(struct run *r)
+{
+    int *claimed = calloc((size_t)r->model.particle_count + 1, sizeof(int));
+    GSN_CHECK(claimed, GSN_ERR_MEMORY, "out of memory");
+    for (int b = 0; b < r->c->boundary_count; ++b) {
+        struct boundary_set *set = &r->boundary[b];
+        int mask = gsn_constraints_surface_mask(r->constraints, set->surface);
+        for (int s = 0; s < set->count; ++s) {
+            int p = set->particle[s];
+            set->reaction_mask[s] = mask & ~claimed[p];
+            claimed[p] |= mask;
+        }
+    }
+    free(claimed);
     return GSN_OK;
 }
 
@@ -164,8 +189,10 @@ static int write_history_header(struct run *r)
     return GSN_OK;
 }
 
-/* One history row from the frame just filled (mean u(X_J) over the
- * surface's particles, reaction summed over them). */
+/* One history row from the frame just filled: the mean u(X_J) over the
+ * surface's particles and the force the supports apply through it, the
+ * resultant of its tractions plus the constraint reactions of the
+ * components it prescribes (DESIGN.md; docs/solver.md, "Boundary values"). */
 static int write_history_row(struct run *r)
 {
     const struct gsn_explicit *e = r->explicit_loop;
@@ -177,11 +204,13 @@ static int write_history_row(struct run *r)
         for (int s = 0; s < set->count; ++s)
             for (int k = 0; k < 3; ++k)
                 mean[k] += u[3 * set->particle[s] + k];
-        /* The force the supports apply: the traction resultant on the
-         * constrained components of the surface (explicit.h). */
         gsn_explicit_surface_force(
             e, set->surface,
             gsn_constraints_surface_mask(r->constraints, set->surface), force);
+        for (int s = 0; s < set->count; ++s)
+            for (int k = 0; k < 3; ++k)
+                if (set->reaction_mask[s] & (1 << k))
+                    force[k] += e->reaction[3 * set->particle[s] + k];
         for (int k = 0; k < 3; ++k)
             mean[k] = set->count ? mean[k] / set->count : 0.0;
         fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", mean[0], mean[1],
@@ -550,8 +579,10 @@ static void run_free(struct run *r)
     gsn_quadrature_destroy(&r->quadrature);
     gsn_model_free(&r->model);
     gsn_frame_free(&r->frame);
-    for (int b = 0; b < GSN_MAX_BOUNDARIES; ++b)
+    for (int b = 0; b < GSN_MAX_BOUNDARIES; ++b) {
         free(r->boundary[b].particle);
+        free(r->boundary[b].reaction_mask);
+    }
     if (r->history)
         fclose(r->history);
     gsn_h5_close(&r->results);
@@ -574,6 +605,7 @@ static int run_setup(struct run *r)
                                        &c->material, &r->material));
     GSN_CALL(gsn_constraints_create(
         &r->model, c, &r->quadrature->particle_values, &r->constraints));
+    GSN_CALL(claim_reactions(r));
     GSN_CALL(gsn_explicit_create(&r->model, r->quadrature, r->material,
                                  r->constraints, c, c->time_step,
                                  &r->explicit_loop));

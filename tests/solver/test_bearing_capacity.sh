@@ -1,19 +1,18 @@
 #!/bin/sh
 # Bearing capacity of a smooth rigid strip footing (issue 7, point 2;
 # docs/failure.md, section 5): geometries/strip_footing.yaml as it is
-# (half the footing, B = 2 m = 10 spacings, MSCNI, weightless soil with
-# the paper's Drucker-Prager, associated flow, small-strain kinematics),
-# pushed at 0.1 m/s to 12.5% of B. Prandtl-Reissner with the plane-strain
-# match of the cone gives c N_c = 1.0568 MPa (REFERENCES.md).
-# Checks: the pressure at 10% and 12.5% of B within 3% of c N_c; a plateau
-# (the two within 1% of each other); kinetic energy below 1% of the
-# internal energy (quasi-static). Why 3%: nodal integration bounds the
-# limit load from neither side, and over the gmsh meshes tried at 10 and
-# 20 spacings the plateau lies between -3% and +4% of c N_c (this mesh:
-# -0.3%). The same case with the paper's large-deformation kinematics
-# fails it (+11% at 10% of B, +16% at 12.5%: no plateau).
+# (half the footing, B = 2 m = 10 spacings, SCNI, weightless soil with the
+# paper's Drucker-Prager, associated flow, small-strain kinematics), pushed
+# at 0.1 m/s to 12.5% of B. Prandtl-Reissner with the plane-strain match of
+# the cone gives c N_c = 1.0568 MPa (REFERENCES.md).
+# Checks, the issue's: the footing pressure (the force the footing applies:
+# traction resultant plus constraint reactions, history.csv) at 10% and
+# 12.5% of B within +0 to +10% of c N_c at 10 spacings (measured +1.3%);
+# a plateau (the two within 1% of each other; large-deformation kinematics
+# rise by 4% between them); kinetic energy below 1% of the internal energy
+# (quasi-static).
 # The mesh is gmsh's reproducible one (docs/pre.md): HXT's meshes differ
-# from run to run and move the plateau by up to 3%.
+# from run to run and move the plateau by about 1%.
 # usage: test_bearing_capacity.sh GEOSCNI   (run from tests/solver)
 set -u
 geoscni=$1
@@ -44,7 +43,7 @@ awk -F, -v ratio="$ratio" '
         printf "q/(c Nc) at 10%% of B %.4f, at 12.5%% %.4f; kinetic/internal <= %s\n", at[1], at[2], ratio
         bad = 0
         if (!(2 in at)) { print "FAIL: the run did not reach 12.5% of B"; exit 1 }
-        for (k = 1; k <= 2; ++k) if (!(at[k] >= 0.97 && at[k] <= 1.03)) { print "FAIL: not within 3% of c N_c"; bad = 1 }
+        for (k = 1; k <= 2; ++k) if (!(at[k] >= 1.0 && at[k] <= 1.10)) { print "FAIL: not within +0 to +10% of c N_c"; bad = 1 }
         if (!(at[2] - at[1] < 0.01 && at[1] - at[2] < 0.01)) { print "FAIL: no plateau (changes by more than 1% from 10% to 12.5% of B)"; bad = 1 }
         if (!(ratio + 0 < 0.01)) { print "FAIL: not quasi-static"; bad = 1 }
         exit bad }' "$out/history.csv"
