@@ -597,31 +597,35 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
         int b = p - p0;
         const double *H = &e->displacement_gradient[9 * p];
         const double *dH = &dH_block[9 * b];
-        double F1[9], Fmid[9], Fmid_inv[9];
+        double F1[9];
         for (int a = 0; a < 9; ++a) {
             Hnew[9 * b + a] = H[a] + dH[a];
             F1[a] = identity_entry(a) + Hnew[9 * b + a];
-            Fmid[a] = identity_entry(a) + H[a] + 0.5 * dH[a];
         }
-        Jmid[b] = gsn_matrix_inverse(Fmid, Fmid_inv);
         double J1 = gsn_matrix_determinant(F1);
-        /* Small strain has no volume to invert: only a non-number fails. */
-        if (e->small_strain
-                ? !isfinite(J1)
-                : !(J1 > 0.0) || !(Jmid[b] > 0.0) || !isfinite(J1)) {
-            e->point_failed[p] = 1;
-            failed = 1;
-            continue;
-        }
+        int admissible;
         if (e->small_strain) {
-            /* Small strain: G = sym dH, no rotation, reference volume. */
+            /* Small strain: G = sym dH, no rotation, the reference volume;
+             * no volume to invert, only a non-number fails. */
             for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j)
                     G[9 * b + 3 * i + j] =
                         0.5 * (dH[3 * i + j] + dH[3 * j + i]);
             Jmid[b] = 1.0;
+            admissible = isfinite(J1);
         } else {
-            gsn_matrix_multiply(dH, Fmid_inv, &G[9 * b]);
+            double Fmid[9], Fmid_inv[9];
+            for (int a = 0; a < 9; ++a)
+                Fmid[a] = identity_entry(a) + H[a] + 0.5 * dH[a];
+            Jmid[b] = gsn_matrix_inverse(Fmid, Fmid_inv);
+            admissible = J1 > 0.0 && Jmid[b] > 0.0 && isfinite(J1);
+            if (admissible)
+                gsn_matrix_multiply(dH, Fmid_inv, &G[9 * b]);
+        }
+        if (!admissible) {
+            e->point_failed[p] = 1;
+            failed = 1;
+            continue;
         }
         memcpy(&old[6 * b], &e->stress[6 * p], 6 * sizeof(double));
         if (e->plastic_offset >= 0)
