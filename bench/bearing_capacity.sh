@@ -24,6 +24,7 @@ kinematics_list=${5:-small large}
 # HXT, docs/pre.md): HXT's meshes move the plateau by about 1%.
 export GEOSCNI_REPRODUCIBLE=${GEOSCNI_REPRODUCIBLE-1}
 geoscni=$root/$build/bin/geoscni
+. "$root/bench/economy_common.sh" # curve, peak
 [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
 mkdir -p "$out"
 csv=$out/bearing_capacity.csv
@@ -70,15 +71,14 @@ for h in $spacings; do
             sed -n 's/.*{\([0-9]*\),.*/\1/p')
         ratio=$(h5dump -a /kinetic_ratio_max "$run/results.h5" 2>/dev/null |
             sed -n 's/.*(0): \(.*\)/\1/p' | head -1)
-        # Footing area b T with b = 1 m and T = 2 h (strip_footing.geo).
-        row=$(awk -F, -v area="$(echo "$h" | awk '{print 2 * $1}')" '
-            NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_uz") u = i; if ($i == "footing_fz") f = i }; next }
-            { s = -$u / 2.0; q = -$f / area / 1.0568e6; if (q > max) max = q
-              for (k = 1; k <= 5; ++k) { t = 0.025 * k
-                  if (!(k in at) && s >= t) at[k] = prev_q + (q - prev_q) * (t - prev_s) / (s - prev_s) }
-              prev_s = s; prev_q = q }
-            END { printf "%.3f,%.3f,%.3f,%.3f,%.3f,%.3f", at[1], at[2], at[3], at[4], at[5], max }' \
-            "$run/history.csv")
+        # q / (c N_c) at every 2.5% of B = 2 m (0.05 m) to 12.5% and the
+        # largest, over the footing area b T = 1 m x 2 h (strip_footing.geo).
+        row=$({ curve "$run/history.csv" 0.05 | head -5
+                echo "max $(work=$out peak "$(basename "$run")")"; } |
+            awk -v scale="$(echo "$h" | awk '{print 1e6 / (2 * $1) / 1.0568e6}')" '
+                $1 == "max" { max = $2 * scale; next }
+                { q[++n] = $2 * scale }
+                END { printf "%.3f,%.3f,%.3f,%.3f,%.3f,%.3f", q[1], q[2], q[3], q[4], q[5], max }')
         cpu=$(tail -1 "$run/cpu" | awk '{printf "%.2f", $1 + $2}')
         error=$(echo "$row" | awk -F, '{ e = $5 - 1; printf "%.5f", e < 0 ? -e : e }')
         echo "$h,$method,$kinematics,$particles,$row,$ratio,$wall,$status,strip_footing_$kinematics,$cpu,$error" >>"$csv"

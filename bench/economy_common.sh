@@ -1,4 +1,4 @@
-# Shared by the economy benches (sourced): run, peak, particles and step
+# Shared by the economy benches and bearing_capacity.sh (sourced): run, peak, particles and step
 # need $geoscni, $work, $end and $threads; curve needs nothing.
 
 # curve HISTORY [STEP]: the footing load (MN) at every STEP m of settlement
@@ -8,7 +8,7 @@ curve() {
         NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_uz") u = i; if ($i == "footing_fz") f = i }; next }
         { s = -$u; q = -$f / 1e6
           while (next_s + step <= s + 1e-12) { next_s += step
-              printf "%.3f %.4f\n", next_s, prev_q + (q - prev_q) * (next_s - prev_s) / (s - prev_s) }
+              printf "%.3f %.6f\n", next_s, prev_q + (q - prev_q) * (next_s - prev_s) / (s - prev_s) }
           prev_s = s; prev_q = q }' "$1"
 }
 
