@@ -14,12 +14,9 @@
 # The mesh is gmsh's reproducible one (docs/pre.md): HXT's meshes differ
 # from run to run and move the plateau by about 1%.
 # usage: test_bearing_capacity.sh GEOSCNI   (run from tests/solver)
-set -u
-geoscni=$1
+. ./cli_testing.sh
 export GEOSCNI_REPRODUCIBLE=1
 root=$(cd ../.. && pwd)
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
 sed -e "s|^geometry: *|geometry: $root/geometries/|" \
     -e "s|velocity: \[null, null, -0.05\]|velocity: [null, null, -0.1]|" \
     -e "s|^\( *end:\).*|\1 2.75|" \

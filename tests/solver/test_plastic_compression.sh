@@ -9,12 +9,8 @@
 # below it; forgetting the area change (or adding it to small strain) would
 # miss by 11% and 33%.
 # usage: test_plastic_compression.sh GEOSCNI   (run from tests/solver)
-set -u
-geoscni=$1
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
+. ./cli_testing.sh
 export GEOSCNI_REPRODUCIBLE=1
-failures=0
 for kinematics in large small; do
     mkdir -p "$out/$kinematics"
     sed -e "s|^geometry: *|geometry: $(pwd)/cases/|" \
@@ -22,7 +18,7 @@ for kinematics in large small; do
         cases/plane_strain_compression.yaml >"$out/$kinematics/case.yaml"
     "$geoscni" pre "$out/$kinematics/case.yaml" -o "$out/$kinematics" -q &&
         "$geoscni" solve "$out/$kinematics/case.yaml" -o "$out/$kinematics" -q ||
-        { echo "FAIL: the $kinematics run failed"; failures=$((failures + 1)); continue; }
+        { fail "the $kinematics run failed"; continue; }
     awk -F, -v kinematics="$kinematics" '
         NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "zmax_uz") u = i; if ($i == "zmax_fz") f = i }; next }
         { e = -$u; F = -$f
@@ -39,7 +35,6 @@ for kinematics in large small; do
                 printf "%s kinematics, eps %.2f: top force %.5g N, expected %.5g N (%+.2f%%)\n", kinematics, t, at[k], expected, 100 * d
                 if (!(d < 0.015 && d > -0.015)) { print "FAIL: off by more than 1.5%"; bad = 1 }
             }
-            exit bad }' "$out/$kinematics/history.csv" || failures=$((failures + 1))
+            exit bad }' "$out/$kinematics/history.csv" || fail "$kinematics: the top force is off its closed form"
 done
-echo "$failures failures"
-[ "$failures" -eq 0 ]
+finish
