@@ -910,8 +910,18 @@ int gsn_explicit_update_stress(struct gsn_explicit *e)
     return GSN_OK;
 }
 
+/* Adds the wall time since *mark to phase `phase` and moves the mark. */
+static void phase_end(struct gsn_explicit *e, enum gsn_explicit_phase phase,
+                      double *mark)
+{
+    double now = omp_get_wtime();
+    e->phase_seconds[phase] += now - *mark;
+    *mark = now;
+}
+
 int gsn_explicit_step(struct gsn_explicit *e)
 {
+    double mark = omp_get_wtime();
     const double dt = e->dt;
     const double t1 = (double)(e->step + 1) * dt;
     const int n3 = 3 * e->particle_count;
@@ -928,12 +938,15 @@ int gsn_explicit_step(struct gsn_explicit *e)
     int refresh =
         e->step % CONSTRAINT_REFRESH == 0 ||
         (e->constraints && gsn_constraints_ramping(e->constraints, t1 - dt));
+    phase_end(e, GSN_PHASE_UPDATES, &mark);
     if (e->constraints && refresh)
         GSN_CALL(gsn_constraints_apply(
             e->constraints, &e->quadrature->particle_values,
             GSN_FIELD_DISPLACEMENT, t1, e->displacement));
+    phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
 
     GSN_CALL(gsn_explicit_update_stress(e));
+    phase_end(e, GSN_PHASE_PASS, &mark);
 
     /* Pass 2: internal force and acceleration at every particle. */
     if (!e->skip_boundary_term) {
@@ -941,6 +954,7 @@ int gsn_explicit_step(struct gsn_explicit *e)
         for (int i = 0; i < n3; ++i)
             e->f_int[i] -= e->boundary_force[i];
     }
+    phase_end(e, GSN_PHASE_BOUNDARY_TERM, &mark);
     double *a1 = e->new_acceleration;
     double dissipated = 0.0;
     for (int i = 0; i < e->particle_count; ++i) {
@@ -966,18 +980,22 @@ int gsn_explicit_step(struct gsn_explicit *e)
             a1[at] = f / e->mass[i];
         }
     }
+    phase_end(e, GSN_PHASE_UPDATES, &mark);
     if (e->constraints)
         GSN_CALL(gsn_constraints_apply(e->constraints,
                                        &e->quadrature->particle_values,
                                        GSN_FIELD_ACCELERATION, t1, a1));
+    phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
     for (int i = 0; i < n3; ++i) { /* eq. (34) */
         e->velocity[i] += 0.5 * dt * (e->acceleration[i] + a1[i]);
         e->acceleration[i] = a1[i];
     }
+    phase_end(e, GSN_PHASE_UPDATES, &mark);
     if (e->constraints && refresh)
         GSN_CALL(gsn_constraints_apply(e->constraints,
                                        &e->quadrature->particle_values,
                                        GSN_FIELD_VELOCITY, t1, e->velocity));
+    phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
 
     /* Reactions, energies, and a check that everything is finite. */
     double kinetic = 0.0, internal = 0.0, external = 0.0;
@@ -1011,6 +1029,7 @@ int gsn_explicit_step(struct gsn_explicit *e)
     e->damping_work += dissipated;
     e->step++;
     e->time = (double)e->step * dt;
+    phase_end(e, GSN_PHASE_UPDATES, &mark);
     return GSN_OK;
 }
 

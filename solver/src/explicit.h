@@ -60,6 +60,15 @@
 extern "C" {
 #endif
 
+/* Phases of a step, for the wall time spent in each (phase_seconds). */
+enum gsn_explicit_phase {
+    GSN_PHASE_PASS,          /* the one pass over the rows: F, stress, f_int */
+    GSN_PHASE_CONSTRAINTS,   /* the boundary solves (constraint.h) */
+    GSN_PHASE_BOUNDARY_TERM, /* the boundary term on constrained surfaces */
+    GSN_PHASE_UPDATES,       /* d, a, v, reactions, energies */
+    GSN_PHASE_COUNT
+};
+
 struct gsn_explicit {
     const struct gsn_model *model;             /* borrowed */
     const struct gsn_quadrature *quadrature;   /* borrowed */
@@ -83,6 +92,7 @@ struct gsn_explicit {
     double *state;          /* main points x state_size */
 
     double kinetic_energy, internal_energy, external_work; /* J */
+    double phase_seconds[GSN_PHASE_COUNT]; /* wall time of the steps, s */
     double damping_work;   /* J dissipated by the local damping */
     double damping_local;  /* Cundall's coefficient (case damping.local) */
     double *damping_force; /* n x 3, N: the local damping force of the last

@@ -483,6 +483,23 @@ static int check_energy(struct run *r)
         sqrt(speed));
 }
 
+/* Where the steps' wall time went (explicit.h, phase_seconds). */
+static void print_phases(const struct gsn_explicit *e)
+{
+    const double *t = e->phase_seconds;
+    double total = 0.0;
+    for (int k = 0; k < GSN_PHASE_COUNT; ++k)
+        total += t[k];
+    if (!(total > 0.0))
+        return;
+    printf("step time: row pass %.0f%%, boundary solves %.0f%%, boundary "
+           "term %.0f%%, updates %.0f%% of %.3g s\n",
+           100.0 * t[GSN_PHASE_PASS] / total,
+           100.0 * t[GSN_PHASE_CONSTRAINTS] / total,
+           100.0 * t[GSN_PHASE_BOUNDARY_TERM] / total,
+           100.0 * t[GSN_PHASE_UPDATES] / total, total);
+}
+
 static int run_loop(struct run *r)
 {
     struct gsn_explicit *e = r->explicit_loop;
@@ -510,6 +527,8 @@ static int run_loop(struct run *r)
             last_print = t;
         }
     }
+    if (!quiet)
+        print_phases(e);
     return GSN_OK;
 }
 
