@@ -136,6 +136,10 @@ struct gsn_explicit {
     int *domain_offset, *domain_point;
     double *domain_weight;
     int *point_owner; /* main points: the particle whose domain holds it */
+    unsigned char *constrained; /* particles: constrained components (bit k:
+                                   component k) */
+    struct gsn_step_sums *step_partial; /* the sums of each piece of the
+                                           step's loops (explicit.c) */
 };
 
 /* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped
