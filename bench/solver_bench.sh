@@ -4,7 +4,9 @@
 # boundary values) on Slope I at paper resolution, on 1 and on 2 threads,
 # RUNS runs each; prints every run and the medians. The model is made once
 # by pre; each run solves STEPS steps at the paper's time step and writes
-# only its first and last frames. INTEGRATION replaces the case's
+# only its first and last frames; a run's line ends with where its step
+# time went (row pass, boundary solves, boundary term, updates; nothing
+# from a build older than that report). INTEGRATION replaces the case's
 # integration (e.g. scni for plain SCNI; slope_I.yaml has MSCNI); THREADS
 # lists the thread counts to run.
 # Usage: bench/solver_bench.sh [BUILD_DIR] [RUNS] [STEPS] [CASE] [INTEGRATION]
@@ -41,7 +43,8 @@ for threads in $thread_counts; do
             >"$work/log" 2>&1
         rate=$(tr '\r' '\n' <"$work/log" | grep 'took' | sed 's/.*  \([0-9.e+]*\) particle-steps.*/\1/')
         particles=$(grep '^solver:' "$work/log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
-        echo "  $threads thread(s), run $i: $rate particle-steps/s ($particles particles)"
+        phases=$(grep '^step time:' "$work/log" | sed 's/^step time: //')
+        echo "  $threads thread(s), run $i: $rate particle-steps/s ($particles particles)${phases:+; $phases}"
         echo "$rate" >>"$work/rates.$threads"
         i=$((i + 1))
     done

@@ -10,6 +10,10 @@
 /* Lambda_c with a condition estimate worse than this cannot be trusted to
  * impose the boundary values to 1e-8 relative. */
 #define CONSTRAINT_RCOND_LIMIT 1e-12
+/* The copied factors must solve Lambda x = b to this, relative to b (a
+ * condition number up to 1e4 times round-off; KLU's rcond check above
+ * bounds it far more loosely). */
+#define CONSTRAINT_SOLVE_CHECK 1e-10
 /* Constrained particle components below which the three solves run on one
  * thread (a parallel region costs more than small solves). */
 enum { CONSTRAINT_PARALLEL_MIN = 2048 };
@@ -22,6 +26,22 @@ struct component_constraint {
     int *column;
     double *entry;
     double *rhs; /* right-hand side, then solution */
+    /* The factors of Lambda_c from KLU (klu_extract, one block):
+     * P (R \ Lambda) Q = L U, copied for the solve of every step (each
+     * triangle by column in the order the solve reads it; the strict
+     * parts, U's diagonal apart). */
+    int *pivot_row;    /* P: row pivot_row[k] of Lambda is pivot k */
+    int *column_order; /* Q: unknown column_order[k] is pivot k's */
+    double *row_scale; /* R: pivot row k was divided by row_scale[k] (KLU
+                          keeps the scale factors in pivot order) */
+    int *lower_offset; /* count + 1: L's columns 0, 1, ... */
+    int *lower_row;
+    double *lower_value;
+    int *upper_offset; /* count + 1: U's columns count-1, count-2, ... */
+    int *upper_row;
+    double *upper_value;
+    double *upper_diagonal;
+    double *pivot_work; /* count */
     /* The entries Psi_I(X_J) of the rows J in B_c with I not in B_c (the
      * right-hand side of a correction), in row order. */
     int *free_offset; /* count + 1 */
@@ -63,6 +83,14 @@ void gsn_constraints_destroy(struct gsn_constraints **constraints)
         free(cc->free_offset);
         free(cc->free_index);
         free(cc->free_value);
+        int *ints[] = {cc->pivot_row, cc->column_order, cc->lower_offset,
+                       cc->lower_row, cc->upper_offset, cc->upper_row};
+        double *doubles[] = {cc->row_scale, cc->lower_value, cc->upper_value,
+                             cc->upper_diagonal, cc->pivot_work};
+        for (size_t i = 0; i < sizeof ints / sizeof ints[0]; ++i)
+            free(ints[i]);
+        for (size_t i = 0; i < sizeof doubles / sizeof doubles[0]; ++i)
+            free(doubles[i]);
         free(k->slot[c]);
     }
     free(k->surface_mask);
@@ -111,6 +139,177 @@ static int collect_prescriptions(const struct gsn_model *m,
         }
     }
     return GSN_OK;
+}
+
+/* Copies KLU's factors P (R \ Lambda) Q = L U (one block: no BTF) into
+ * the arrays of the step's solve (factor_solve). */
+static int copy_factors(struct component_constraint *cc)
+{
+    int n = cc->count, lnz = cc->numeric->lnz, unz = cc->numeric->unz;
+    int *Lp = malloc(sizeof(int) * ((size_t)n + 1));
+    int *Up = malloc(sizeof(int) * ((size_t)n + 1));
+    int *Li = malloc(sizeof(int) * (size_t)lnz);
+    int *Ui = malloc(sizeof(int) * (size_t)unz);
+    double *Lx = malloc(sizeof(double) * (size_t)lnz);
+    double *Ux = malloc(sizeof(double) * (size_t)unz);
+    cc->pivot_row = malloc(sizeof(int) * (size_t)n);
+    cc->column_order = malloc(sizeof(int) * (size_t)n);
+    cc->row_scale = malloc(sizeof(double) * (size_t)n);
+    cc->lower_offset = calloc((size_t)n + 1, sizeof(int));
+    cc->upper_offset = calloc((size_t)n + 1, sizeof(int));
+    cc->lower_row = malloc(sizeof(int) * (size_t)lnz);
+    cc->lower_value = malloc(sizeof(double) * (size_t)lnz);
+    cc->upper_row = malloc(sizeof(int) * (size_t)unz);
+    cc->upper_value = malloc(sizeof(double) * (size_t)unz);
+    cc->upper_diagonal = calloc((size_t)n, sizeof(double));
+    cc->pivot_work = malloc(sizeof(double) * (size_t)n);
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(Lp && Up && Li && Ui && Lx && Ux && cc->pivot_row &&
+                       cc->column_order && cc->row_scale && cc->lower_offset &&
+                       cc->upper_offset && cc->lower_row && cc->lower_value &&
+                       cc->upper_row && cc->upper_value && cc->upper_diagonal &&
+                       cc->pivot_work,
+                   rc, GSN_ERR_MEMORY, done, "out of memory");
+    GSN_CHECK_GOTO(klu_extract(cc->numeric, cc->symbolic, Lp, Li, Lx, Up, Ui,
+                               Ux, NULL, NULL, NULL, cc->pivot_row,
+                               cc->column_order, cc->row_scale, NULL,
+                               &cc->common),
+                   rc, GSN_ERR_NUMERICAL, done,
+                   "the boundary factors could not be read (KLU status %d)",
+                   cc->common.status);
+    /* L: columns ascending, the unit diagonal left out. */
+    for (int k = 0; k < n; ++k) {
+        int at = cc->lower_offset[k];
+        for (int p = Lp[k]; p < Lp[k + 1]; ++p)
+            if (Li[p] != k) {
+                cc->lower_row[at] = Li[p];
+                cc->lower_value[at++] = Lx[p];
+            }
+        cc->lower_offset[k + 1] = at;
+    }
+    /* U: columns descending (the order of the backward solve), the
+     * diagonal apart. */
+    for (int j = 0; j < n; ++j) {
+        int k = n - 1 - j, at = cc->upper_offset[j];
+        for (int p = Up[k]; p < Up[k + 1]; ++p) {
+            if (Ui[p] == k) {
+                cc->upper_diagonal[k] = Ux[p];
+                continue;
+            }
+            cc->upper_row[at] = Ui[p];
+            cc->upper_value[at++] = Ux[p];
+        }
+        cc->upper_offset[j + 1] = at;
+        GSN_CHECK_GOTO(cc->upper_diagonal[k] != 0.0, rc, GSN_ERR_NUMERICAL,
+                       done, "the boundary factor U has a zero pivot");
+    }
+done:
+    free(Lp);
+    free(Up);
+    free(Li);
+    free(Ui);
+    free(Lx);
+    free(Ux);
+    return rc;
+}
+
+/* x = Lambda^-1 b in place, with the copied factors: y = P (R \ b),
+ * L U z = y, x = Q z. Columns of L then of U (last first), each read once
+ * in storage order. */
+static void factor_solve(struct component_constraint *cc, double *x)
+{
+    const int n = cc->count;
+    double *restrict y = cc->pivot_work;
+    for (int k = 0; k < n; ++k)
+        y[k] = x[cc->pivot_row[k]] / cc->row_scale[k];
+    for (int k = 0; k < n; ++k) {
+        const double yk = y[k];
+        for (int p = cc->lower_offset[k]; p < cc->lower_offset[k + 1]; ++p)
+            y[cc->lower_row[p]] -= cc->lower_value[p] * yk;
+    }
+    for (int j = 0; j < n; ++j) {
+        const int k = n - 1 - j;
+        const double zk = y[k] / cc->upper_diagonal[k];
+        y[k] = zk;
+        for (int p = cc->upper_offset[j]; p < cc->upper_offset[j + 1]; ++p)
+            y[cc->upper_row[p]] -= cc->upper_value[p] * zk;
+    }
+    for (int k = 0; k < n; ++k)
+        x[cc->column_order[k]] = y[k];
+}
+
+/* Factorizes Lambda_c (KLU with AMD, partial pivoting, no BTF), checks its
+ * condition, copies the factors for the step's solves and checks them on
+ * one right-hand side; KLU's own objects are freed after. */
+static int factorize(struct component_constraint *cc, char name)
+{
+    int n = cc->count, entries = cc->row_offset[n];
+    /* Lambda in CSC (the transpose of the CSR rows) */
+    int *column_offset = calloc((size_t)n + 1, sizeof(int));
+    int *row = malloc(sizeof(int) * (size_t)(entries ? entries : 1));
+    double *value = malloc(sizeof(double) * (size_t)(entries ? entries : 1));
+    double *b = malloc(sizeof(double) * (size_t)n);
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(column_offset && row && value && b, rc, GSN_ERR_MEMORY, done,
+                   "out of memory");
+    for (int e = 0; e < entries; ++e)
+        column_offset[cc->column[e] + 1]++;
+    for (int k = 0; k < n; ++k)
+        column_offset[k + 1] += column_offset[k];
+    for (int i = 0; i < n; ++i)
+        for (int e = cc->row_offset[i]; e < cc->row_offset[i + 1]; ++e) {
+            int at = column_offset[cc->column[e]]++;
+            row[at] = i;
+            value[at] = cc->entry[e];
+        }
+    for (int k = n; k > 0; --k)
+        column_offset[k] = column_offset[k - 1];
+    column_offset[0] = 0;
+    klu_defaults(&cc->common);
+    cc->common.btf = 0; /* one block: the copied factors need no F */
+    cc->symbolic = klu_analyze(n, column_offset, row, &cc->common);
+    GSN_CHECK_GOTO(cc->symbolic, rc, GSN_ERR_NUMERICAL, done,
+                   "the %c boundary matrix (%d particles) could not be "
+                   "analysed (KLU status %d)",
+                   name, n, cc->common.status);
+    cc->numeric =
+        klu_factor(column_offset, row, value, cc->symbolic, &cc->common);
+    GSN_CHECK_GOTO(
+        cc->numeric && cc->common.status == KLU_OK, rc, GSN_ERR_NUMERICAL, done,
+        "the %c boundary matrix Psi_K(X_J) of %d constrained particles "
+        "is singular (KLU status %d); check for duplicate boundary "
+        "particles",
+        name, n, cc->common.status);
+    klu_rcond(cc->symbolic, cc->numeric, &cc->common);
+    GSN_CHECK_GOTO(cc->common.rcond > CONSTRAINT_RCOND_LIMIT, rc,
+                   GSN_ERR_NUMERICAL, done,
+                   "the %c boundary matrix of %d constrained particles is "
+                   "too badly conditioned (reciprocal condition %.3g)",
+                   name, n, cc->common.rcond);
+    GSN_CALL_GOTO(copy_factors(cc), rc, done);
+    /* The copy solves Lambda x = b: residual of b_i = 1 + i mod 7. */
+    for (int i = 0; i < n; ++i)
+        b[i] = 1.0 + i % 7;
+    factor_solve(cc, b);
+    double worst = 0.0;
+    for (int i = 0; i < n; ++i) {
+        double r = -(1.0 + i % 7);
+        for (int e = cc->row_offset[i]; e < cc->row_offset[i + 1]; ++e)
+            r += cc->entry[e] * b[cc->column[e]];
+        worst = fmax(worst, fabs(r));
+    }
+    GSN_CHECK_GOTO(worst <= CONSTRAINT_SOLVE_CHECK * 7.0, rc, GSN_ERR_INTERNAL,
+                   done,
+                   "the %c boundary solve misses its right-hand side by %.3g",
+                   name, worst);
+done:
+    klu_free_numeric(&cc->numeric, &cc->common);
+    klu_free_symbolic(&cc->symbolic, &cc->common);
+    free(column_offset);
+    free(row);
+    free(value);
+    free(b);
+    return rc;
 }
 
 static int component_build(struct gsn_constraints *k, int c,
@@ -184,27 +383,7 @@ static int component_build(struct gsn_constraints *k, int c,
             at++;
         }
     }
-    /* CSR of Lambda is CSC of Lambda^T: KLU factors Lambda^T, and
-     * klu_tsolve then solves Lambda x = b. */
-    klu_defaults(&cc->common);
-    cc->symbolic =
-        klu_analyze(cc->count, cc->row_offset, cc->column, &cc->common);
-    GSN_CHECK(cc->symbolic, GSN_ERR_NUMERICAL,
-              "the %c boundary matrix (%d particles) could not be analysed "
-              "(KLU status %d)",
-              component_names[c], cc->count, cc->common.status);
-    cc->numeric = klu_factor(cc->row_offset, cc->column, cc->entry,
-                             cc->symbolic, &cc->common);
-    GSN_CHECK(cc->numeric && cc->common.status == KLU_OK, GSN_ERR_NUMERICAL,
-              "the %c boundary matrix Psi_K(X_J) of %d constrained particles "
-              "is singular (KLU status %d); check for duplicate boundary "
-              "particles",
-              component_names[c], cc->count, cc->common.status);
-    klu_rcond(cc->symbolic, cc->numeric, &cc->common);
-    GSN_CHECK(cc->common.rcond > CONSTRAINT_RCOND_LIMIT, GSN_ERR_NUMERICAL,
-              "the %c boundary matrix of %d constrained particles is too "
-              "badly conditioned (reciprocal condition %.3g)",
-              component_names[c], cc->count, cc->common.rcond);
+    GSN_CALL(factorize(cc, component_names[c]));
     return GSN_OK;
 }
 
@@ -272,9 +451,9 @@ int gsn_constraints_ramping(const struct gsn_constraints *constraints,
     return time < constraints->ramp;
 }
 
-/* Component c of gsn_constraints_apply; 0 when KLU fails. */
-static int component_apply(struct gsn_constraints *constraints, int c,
-                           double factor, double *field)
+/* Component c of gsn_constraints_apply. */
+static void component_apply(struct gsn_constraints *constraints, int c,
+                            double factor, double *field)
 {
     struct component_constraint *cc = &constraints->component[c];
     for (int s = 0; s < cc->count; ++s) {
@@ -283,13 +462,9 @@ static int component_apply(struct gsn_constraints *constraints, int c,
             target -= cc->free_value[e] * field[3 * cc->free_index[e] + c];
         cc->rhs[s] = target;
     }
-    int ok = klu_tsolve(cc->symbolic, cc->numeric, cc->count, 1, cc->rhs,
-                        &cc->common);
-    if (!ok)
-        return 0;
+    factor_solve(cc, cc->rhs);
     for (int s = 0; s < cc->count; ++s)
         field[3 * cc->particle[s] + c] = cc->rhs[s];
-    return 1;
 }
 
 int gsn_constraints_apply(struct gsn_constraints *constraints,
@@ -298,23 +473,19 @@ int gsn_constraints_apply(struct gsn_constraints *constraints,
                           double *field)
 {
     /* The components read and write only their own column of field, and
-     * each has its own KLU workspace: they run in parallel, the same bits
-     * on any thread count. */
+     * each has its own work array: they run in parallel, the same bits on
+     * any thread count. */
     GSN_CHECK(values->row_count == constraints->particle_count,
               GSN_ERR_INTERNAL, "shape values are not one row per particle");
     const double factor = gsn_ramp_factor(constraints->ramp, kind, time);
-    int ok[3] = {1, 1, 1}, work = 0;
+    int work = 0;
     for (int c = 0; c < 3; ++c)
         work += constraints->component[c].count;
 #pragma omp parallel for schedule(dynamic,                                     \
                                   1) if (work >= CONSTRAINT_PARALLEL_MIN)
     for (int c = 0; c < 3; ++c)
         if (constraints->component[c].count > 0)
-            ok[c] = component_apply(constraints, c, factor, field);
-    for (int c = 0; c < 3; ++c)
-        GSN_CHECK(ok[c], GSN_ERR_NUMERICAL,
-                  "the %c boundary solve failed (KLU status %d)",
-                  component_names[c], constraints->component[c].common.status);
+            component_apply(constraints, c, factor, field);
     return GSN_OK;
 }
 
