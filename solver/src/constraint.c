@@ -57,6 +57,8 @@ struct gsn_constraints {
     int surface_count;
     double ramp;       /* s, time.ramp */
     int *surface_mask; /* per model surface: constrained components */
+    int *entry_of;     /* particles x 3: the boundary entry whose
+                          prescription holds the component, or -1 */
     int *slot[3];      /* slot[c][I]: position of I in B_c, or -1 */
     struct component_constraint component[3];
 };
@@ -94,12 +96,14 @@ void gsn_constraints_destroy(struct gsn_constraints **constraints)
         free(k->slot[c]);
     }
     free(k->surface_mask);
+    free(k->entry_of);
     free(k);
     *constraints = NULL;
 }
 
-/* Prescriptions per (particle, component): the boundary entry that set it
- * (-1: none) and its velocity. */
+/* Prescriptions per (particle, component): the first boundary entry in
+ * case order that constrains it (-1: none; any later one must prescribe
+ * the same value) and its velocity. */
 static int collect_prescriptions(const struct gsn_model *m,
                                  const struct gsn_case *c, int *entry_of,
                                  double *velocity_of)
@@ -133,7 +137,8 @@ static int collect_prescriptions(const struct gsn_model *m,
                           previous >= 0 ? c->boundaries[previous].name : "",
                           entry->name, component_names[k],
                           velocity_of[3 * p + k], value);
-                entry_of[3 * p + k] = b;
+                if (previous < 0)
+                    entry_of[3 * p + k] = b;
                 velocity_of[3 * p + k] = value;
             }
         }
@@ -398,6 +403,8 @@ int gsn_constraints_create(const struct gsn_model *m,
     size_t n = (size_t)m->particle_count;
     struct gsn_constraints *k = calloc(1, sizeof *k);
     int *entry_of = malloc(sizeof(int) * 3 * (n ? n : 1));
+    if (k)
+        k->entry_of = entry_of;
     double *velocity_of = malloc(sizeof(double) * 3 * (n ? n : 1));
     /* symmetry planes hold their normal component: a copy with it fixed */
     struct gsn_case *c = malloc(sizeof *c);
@@ -424,7 +431,8 @@ int gsn_constraints_create(const struct gsn_model *m,
             component_build(k, comp, m, values, entry_of, velocity_of), rc,
             done);
 done:
-    free(entry_of);
+    if (!k)
+        free(entry_of);
     free(velocity_of);
     free(c);
     if (rc != GSN_OK)
@@ -506,6 +514,12 @@ int gsn_constraints_set_velocity(struct gsn_constraints *constraints,
     struct component_constraint *cc = &constraints->component[component];
     cc->velocity[constraints->slot[component][particle]] = velocity;
     return GSN_OK;
+}
+
+int gsn_constraints_entry(const struct gsn_constraints *constraints,
+                          int particle, int component)
+{
+    return constraints->entry_of[3 * (size_t)particle + component];
 }
 
 int gsn_constraints_surface_mask(const struct gsn_constraints *constraints,

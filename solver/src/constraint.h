@@ -77,6 +77,13 @@ int gsn_constraints_is_constrained(const struct gsn_constraints *constraints,
 int gsn_constraints_set_velocity(struct gsn_constraints *constraints,
                                  int particle, int component, double velocity);
 
+/* The boundary entry (index in the case's boundaries) whose prescription
+ * holds component k of particle I: the first in case order that constrains
+ * it (any later one must prescribe the same value), or -1. The history
+ * reports the component's constraint reaction under that entry. */
+int gsn_constraints_entry(const struct gsn_constraints *constraints,
+                          int particle, int component);
+
 /* Components constrained on model surface `surface` by the case's
  * boundary entries, as a bit mask (bit k: component k); 0 if none. */
 int gsn_constraints_surface_mask(const struct gsn_constraints *constraints,

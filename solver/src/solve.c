@@ -105,25 +105,23 @@ static int build_boundary_sets(struct run *r)
     return GSN_OK;
 }
 
-/* Each constrained component of a particle reports its reaction under one
- * entry: the first in the case file whose surface holds the particle and
- * constrains the component (a corner shared by two fixed faces is counted
- * once). */
-static int claim_reactions(struct run *r)
+/* The components whose constraint reaction each entry reports: at each of
+ * its particles, those it prescribes (gsn_constraints_entry: the first
+ * entry in case order that constrains a component, the one rule of
+ * constraint.c), so that a particle on two surfaces counts once. */
+static void claim_reactions(struct run *r)
 {
-    int *claimed = calloc((size_t)r->model.particle_count + 1, sizeof(int));
-    GSN_CHECK(claimed, GSN_ERR_MEMORY, "out of memory");
     for (int b = 0; b < r->c->boundary_count; ++b) {
         struct boundary_set *set = &r->boundary[b];
-        int mask = gsn_constraints_surface_mask(r->constraints, set->surface);
         for (int s = 0; s < set->count; ++s) {
-            int p = set->particle[s];
-            set->reaction_mask[s] = mask & ~claimed[p];
-            claimed[p] |= mask;
+            int mask = 0;
+            for (int k = 0; k < 3; ++k)
+                if (gsn_constraints_entry(r->constraints, set->particle[s],
+                                          k) == b)
+                    mask |= 1 << k;
+            set->reaction_mask[s] = mask;
         }
     }
-    free(claimed);
-    return GSN_OK;
 }
 
 /* Fills r->frame from the loop's state at its current time: the fields of
@@ -624,7 +622,7 @@ static int run_setup(struct run *r)
                                        &c->material, &r->material));
     GSN_CALL(gsn_constraints_create(
         &r->model, c, &r->quadrature->particle_values, &r->constraints));
-    GSN_CALL(claim_reactions(r));
+    claim_reactions(r);
     GSN_CALL(gsn_explicit_create(&r->model, r->quadrature, r->material,
                                  r->constraints, c, c->time_step,
                                  &r->explicit_loop));
