@@ -63,6 +63,77 @@ static void bins_range(const struct bins *b, const double lo[3],
     }
 }
 
+/* Walks the items of the bins that overlap [lo, hi] in bin order (x
+ * fastest), each item once per mark: stamp[item] keeps the last mark that
+ * saw it. */
+struct bins_walk {
+    const struct bins *bins;
+    int *stamp, mark;
+    int first[3], last[3], at[3]; /* the bins to read; the one being read */
+    int entry, end;               /* the items of the bin being read */
+};
+
+static void bins_walk_open(struct bins_walk *walk)
+{
+    const struct bins *b = walk->bins;
+    long bin =
+        ((long)walk->at[2] * b->n[1] + walk->at[1]) * b->n[0] + walk->at[0];
+    walk->entry = b->offset[bin];
+    walk->end = b->offset[bin + 1];
+}
+
+static void bins_walk_start(struct bins_walk *walk, const struct bins *bins,
+                            const double lo[3], const double hi[3], int *stamp,
+                            int mark)
+{
+    walk->bins = bins;
+    walk->stamp = stamp;
+    walk->mark = mark;
+    bins_range(bins, lo, hi, walk->first, walk->last);
+    memcpy(walk->at, walk->first, sizeof walk->at);
+    bins_walk_open(walk);
+}
+
+/* The next item not yet seen under this mark, or -1 when done. */
+static int bins_walk_next(struct bins_walk *walk)
+{
+    for (;;) {
+        while (walk->entry < walk->end) {
+            int item = walk->bins->item[walk->entry++];
+            if (walk->stamp[item] == walk->mark)
+                continue;
+            walk->stamp[item] = walk->mark;
+            return item;
+        }
+        int k = 0;
+        while (k < 3 && ++walk->at[k] > walk->last[k])
+            walk->at[k] = walk->first[k], ++k;
+        if (k == 3)
+            return -1;
+        bins_walk_open(walk);
+    }
+}
+
+/* Whether the bounding box of `count` points v (3 each, relative to x) misses
+ * the box [lo, hi]: strictly apart, or, with touching_misses, also where the
+ * two only touch. */
+static int points_miss_box(const double *v, int count, const double x[3],
+                           const double lo[3], const double hi[3],
+                           int touching_misses)
+{
+    for (int k = 0; k < 3; ++k) {
+        double a = v[k], c = v[k];
+        for (int p = 1; p < count; ++p) {
+            a = fmin(a, v[3 * p + k]);
+            c = fmax(c, v[3 * p + k]);
+        }
+        if (touching_misses ? a + x[k] >= hi[k] || c + x[k] <= lo[k]
+                            : a + x[k] > hi[k] || c + x[k] < lo[k])
+            return 1;
+    }
+    return 0;
+}
+
 /* Bins items by their bounding boxes (item_lo/item_hi, count x 3). */
 static int bins_create(struct bins *b, const double lo[3], const double hi[3],
                        double spacing, int count, const double *item_lo,
@@ -369,37 +440,18 @@ static int cell_boundary_hits(const struct context *ctx, struct worker *w,
     const struct body_index *body = ctx->body;
     const double *x = &ctx->in->position[3 * i];
     const double *position = ctx->in->position;
-    const struct bins *bins = &body->triangles;
-    int first[3], last[3], hits = 0;
-    bins_range(bins, lo, hi, first, last);
-    for (int z = first[2]; z <= last[2]; ++z)
-        for (int y = first[1]; y <= last[1]; ++y)
-            for (int xb = first[0]; xb <= last[0]; ++xb) {
-                long bin = ((long)z * bins->n[1] + y) * bins->n[0] + xb;
-                for (int e = bins->offset[bin]; e < bins->offset[bin + 1];
-                     ++e) {
-                    int t = bins->item[e];
-                    if (w->stamp_triangle[t] == i)
-                        continue;
-                    w->stamp_triangle[t] = i;
-                    double tri[3][3];
-                    int outside = 0;
-                    for (int c = 0; c < 3; ++c)
-                        for (int k = 0; k < 3; ++k)
-                            tri[c][k] =
-                                position[3 * body->triangle[3 * t + c] + k] -
-                                x[k];
-                    for (int k = 0; k < 3 && !outside; ++k) {
-                        double a = fmin(fmin(tri[0][k], tri[1][k]), tri[2][k]);
-                        double c = fmax(fmax(tri[0][k], tri[1][k]), tri[2][k]);
-                        outside = a + x[k] > hi[k] || c + x[k] < lo[k];
-                    }
-                    if (!outside &&
-                        poly_meets_triangle(&w->cell, &tri[0][0], ctx->eps,
-                                            ctx->area_eps))
-                        w->hit[hits++] = t;
-                }
-            }
+    int hits = 0;
+    struct bins_walk walk;
+    bins_walk_start(&walk, &body->triangles, lo, hi, w->stamp_triangle, i);
+    for (int t; (t = bins_walk_next(&walk)) >= 0;) {
+        double tri[3][3];
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < 3; ++k)
+                tri[c][k] = position[3 * body->triangle[3 * t + c] + k] - x[k];
+        if (!points_miss_box(&tri[0][0], 3, x, lo, hi, 0) &&
+            poly_meets_triangle(&w->cell, &tri[0][0], ctx->eps, ctx->area_eps))
+            w->hit[hits++] = t;
+    }
     return hits;
 }
 
@@ -470,66 +522,43 @@ static int cell_emit_pieces(const struct context *ctx, struct worker *w, int i,
     const struct domain_body *body = &ctx->in->body;
     const double *position = ctx->in->position;
     const double *x = &position[3 * i];
-    const struct bins *bins = &ctx->body->tetrahedra;
-    int first[3], last[3];
-    bins_range(bins, lo, hi, first, last);
     *volume = 0.0;
     moment[0] = moment[1] = moment[2] = 0.0;
-    for (int z = first[2]; z <= last[2]; ++z)
-        for (int y = first[1]; y <= last[1]; ++y)
-            for (int xb = first[0]; xb <= last[0]; ++xb) {
-                long bin = ((long)z * bins->n[1] + y) * bins->n[0] + xb;
-                for (int e = bins->offset[bin]; e < bins->offset[bin + 1];
-                     ++e) {
-                    int t = bins->item[e];
-                    if (w->stamp[t] == i)
-                        continue;
-                    w->stamp[t] = i;
-                    double v[4][3];
-                    int outside = 0;
-                    for (int c = 0; c < 4; ++c)
-                        for (int k = 0; k < 3; ++k)
-                            v[c][k] =
-                                position[3 * body->tetrahedra[4 * t + c] + k] -
-                                x[k];
-                    for (int k = 0; k < 3 && !outside; ++k) {
-                        double a = fmin(fmin(v[0][k], v[1][k]),
-                                        fmin(v[2][k], v[3][k]));
-                        double c = fmax(fmax(v[0][k], v[1][k]),
-                                        fmax(v[2][k], v[3][k]));
-                        outside = a + x[k] >= hi[k] || c + x[k] <= lo[k];
-                    }
-                    if (outside ||
-                        !poly_init_tetrahedron(&w->tet, &v[0][0],
-                                               &body->face_label[4 * t]))
-                        continue;
-                    poly_copy(&w->piece, &w->cell);
-                    int empty = 0;
-                    for (int f = 0; f < 4 && !empty; ++f) {
-                        const double *plane = &w->tet.face_plane[4 * f];
-                        int r = clip_checked(
-                            &w->piece, &w->scratch, plane, plane[3],
-                            w->tet.face_label[f], ctx->eps,
-                            DOMAIN_EPS_RETRY / DOMAIN_EPS * ctx->eps);
-                        if (r == POLY_CLIP_OVERFLOW || r == POLY_CLIP_TOPOLOGY)
-                            return r == POLY_CLIP_OVERFLOW ? -2 : -3;
-                        empty = r == POLY_CLIP_EMPTY;
-                    }
-                    if (empty)
-                        continue;
-                    double pv, pm[3];
-                    poly_volume(&w->piece, &pv, pm);
-                    if (pv <= 0.0)
-                        continue;
-                    *volume += pv;
-                    for (int k = 0; k < 3; ++k)
-                        moment[k] += pm[k];
-                    int r = emit_faces(b, &w->piece, x, ctx->in->facet_points,
-                                       ctx->drop_area, cell_faces);
-                    if (r <= 0)
-                        return r == 0 ? 0 : -1;
-                }
-            }
+    struct bins_walk walk;
+    bins_walk_start(&walk, &ctx->body->tetrahedra, lo, hi, w->stamp, i);
+    for (int t; (t = bins_walk_next(&walk)) >= 0;) {
+        double v[4][3];
+        for (int c = 0; c < 4; ++c)
+            for (int k = 0; k < 3; ++k)
+                v[c][k] = position[3 * body->tetrahedra[4 * t + c] + k] - x[k];
+        if (points_miss_box(&v[0][0], 4, x, lo, hi, 1) ||
+            !poly_init_tetrahedron(&w->tet, &v[0][0], &body->face_label[4 * t]))
+            continue;
+        poly_copy(&w->piece, &w->cell);
+        int empty = 0;
+        for (int f = 0; f < 4 && !empty; ++f) {
+            const double *plane = &w->tet.face_plane[4 * f];
+            int r = clip_checked(&w->piece, &w->scratch, plane, plane[3],
+                                 w->tet.face_label[f], ctx->eps,
+                                 DOMAIN_EPS_RETRY / DOMAIN_EPS * ctx->eps);
+            if (r == POLY_CLIP_OVERFLOW || r == POLY_CLIP_TOPOLOGY)
+                return r == POLY_CLIP_OVERFLOW ? -2 : -3;
+            empty = r == POLY_CLIP_EMPTY;
+        }
+        if (empty)
+            continue;
+        double pv, pm[3];
+        poly_volume(&w->piece, &pv, pm);
+        if (pv <= 0.0)
+            continue;
+        *volume += pv;
+        for (int k = 0; k < 3; ++k)
+            moment[k] += pm[k];
+        int r = emit_faces(b, &w->piece, x, ctx->in->facet_points,
+                           ctx->drop_area, cell_faces);
+        if (r <= 0)
+            return r == 0 ? 0 : -1;
+    }
     return 1;
 }
 
