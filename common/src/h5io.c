@@ -104,39 +104,15 @@ static int h5_make_parents(hid_t loc, const char *path)
     return GSN_OK;
 }
 
-int gsn_h5_attr_write_string(hid_t loc, const char *name, const char *value)
-{
-    char file[256];
-    hid_t type = H5Tcopy(H5T_C_S1);
-    hid_t space = H5Screate(H5S_SCALAR);
-    hid_t attr = H5I_INVALID_HID;
-    int ok = type >= 0 && space >= 0 &&
-             H5Tset_size(type, strlen(value) + 1) >= 0 &&
-             H5Tset_strpad(type, H5T_STR_NULLTERM) >= 0;
-    if (ok && H5Aexists(loc, name) > 0)
-        ok = H5Adelete(loc, name) >= 0;
-    if (ok) {
-        attr = H5Acreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
-        ok = attr >= 0 && H5Awrite(attr, type, value) >= 0;
-    }
-    if (attr >= 0)
-        H5Aclose(attr);
-    if (space >= 0)
-        H5Sclose(space);
-    if (type >= 0)
-        H5Tclose(type);
-    GSN_CHECK(ok, GSN_ERR_IO, "%s: cannot write attribute '%s'",
-              h5_file_name(loc, file, sizeof file), name);
-    return GSN_OK;
-}
-
+/* A scalar attribute `name` of HDF5 type `type` on loc, replacing one of
+ * that name. */
 static int h5_attr_write_scalar(hid_t loc, const char *name, hid_t type,
                                 const void *value)
 {
     char file[256];
     hid_t space = H5Screate(H5S_SCALAR);
     hid_t attr = H5I_INVALID_HID;
-    int ok = space >= 0;
+    int ok = space >= 0 && type >= 0;
     if (ok && H5Aexists(loc, name) > 0)
         ok = H5Adelete(loc, name) >= 0;
     if (ok) {
@@ -149,6 +125,19 @@ static int h5_attr_write_scalar(hid_t loc, const char *name, hid_t type,
         H5Sclose(space);
     GSN_CHECK(ok, GSN_ERR_IO, "%s: cannot write attribute '%s'",
               h5_file_name(loc, file, sizeof file), name);
+    return GSN_OK;
+}
+
+int gsn_h5_attr_write_string(hid_t loc, const char *name, const char *value)
+{
+    hid_t type = H5Tcopy(H5T_C_S1);
+    int ok = type >= 0 && H5Tset_size(type, strlen(value) + 1) >= 0 &&
+             H5Tset_strpad(type, H5T_STR_NULLTERM) >= 0;
+    int rc =
+        h5_attr_write_scalar(loc, name, ok ? type : H5I_INVALID_HID, value);
+    if (type >= 0)
+        H5Tclose(type);
+    GSN_CALL(rc);
     return GSN_OK;
 }
 
