@@ -324,6 +324,18 @@ void poly_volume(const struct poly *p, double *volume, double moment[3])
         moment[k] = m24[k] / 24.0;
 }
 
+/* (x1 - x0) x (x2 - x0): twice the vector area of triangle x0 x1 x2. */
+static void twice_triangle_area(const double *x0, const double *x1,
+                                const double *x2, double c[3])
+{
+    double a[3], b[3];
+    for (int k = 0; k < 3; ++k) {
+        a[k] = x1[k] - x0[k];
+        b[k] = x2[k] - x0[k];
+    }
+    cross3(a, b, c);
+}
+
 void poly_face_area(const struct poly *p, int f, double area[3])
 {
     int begin = p->face_start[f], end = p->face_start[f + 1];
@@ -332,12 +344,8 @@ void poly_face_area(const struct poly *p, int f, double area[3])
     for (int e = begin + 1; e + 1 < end; ++e) {
         const double *x1 = &p->vertex[3 * p->entry[e]];
         const double *x2 = &p->vertex[3 * p->entry[e + 1]];
-        double a[3], b[3], c[3];
-        for (int k = 0; k < 3; ++k) {
-            a[k] = x1[k] - x0[k];
-            b[k] = x2[k] - x0[k];
-        }
-        cross3(a, b, c);
+        double c[3];
+        twice_triangle_area(x0, x1, x2, c);
         for (int k = 0; k < 3; ++k)
             area[k] += 0.5 * c[k];
     }
@@ -354,12 +362,8 @@ int poly_face_quadrature(const struct poly *p, int f, const double normal[3],
     for (int e = begin + 1; e + 1 < end; ++e) {
         const double *x1 = &p->vertex[3 * p->entry[e]];
         const double *x2 = &p->vertex[3 * p->entry[e + 1]];
-        double a[3], b[3], c[3];
-        for (int k = 0; k < 3; ++k) {
-            a[k] = x1[k] - x0[k];
-            b[k] = x2[k] - x0[k];
-        }
-        cross3(a, b, c);
+        double c[3];
+        twice_triangle_area(x0, x1, x2, c);
         double area = 0.5 * dot3(c, normal);
         if (facet_points == 3) {
             /* degree 2: barycentric (2/3, 1/6, 1/6) and permutations */
