@@ -185,29 +185,39 @@ static void pyramid(const struct gsn_model *m, int f, int L, double sign,
                            : (sign * nf[axis] < 0.0);
 }
 
-static int mscni_row(void *context, int row, struct kernel_thread *t)
+/* The sub-cells of particle L's nodal domain: the pyramids from X_L over
+ * its facets, grouped (pyramid); their volumes v (m^3) and first moments
+ * x (sum of volume times centroid). Pyramids of facets through X_L have
+ * no volume and are left out. */
+static void subcell_pyramids(const struct gsn_model *m,
+                             const struct facet_context *c, int L, double v[6],
+                             double x[6][3])
 {
-    const struct facet_context *c = context;
-    const struct gsn_model *m = c->m;
-    int L = row / c->subcells, s = row % c->subcells, touched = 0;
-    double total = 0.0, point[3] = {0.0, 0.0, 0.0};
     for (int e = c->particle_facet_offset[L];
          e < c->particle_facet_offset[L + 1]; ++e) {
         int f = c->particle_facet[e], group;
         double sign = m->facet_owner[f] == L ? 1.0 : -1.0;
         double volume, centroid[3];
         pyramid(m, f, L, sign, c->subcells, &volume, centroid, &group);
-        /* pyramids of facets through X_L have no volume */
-        if (group != s || !(volume > 1e-12 * m->volume[L]))
+        if (!(volume > 1e-12 * m->volume[L]))
             continue;
-        total += volume;
+        v[group] += volume;
         for (int k = 0; k < 3; ++k)
-            point[k] += volume * centroid[k];
+            x[group][k] += volume * centroid[k];
     }
-    if (total > 0.0) {
+}
+
+static int mscni_row(void *context, int row, struct kernel_thread *t)
+{
+    const struct facet_context *c = context;
+    int L = row / c->subcells, s = row % c->subcells, touched = 0;
+    double volume[6] = {0}, moment[6][3] = {{0}};
+    subcell_pyramids(c->m, c, L, volume, moment);
+    if (volume[s] > 0.0) {
         /* B_s: grad Psi at the centroid of the sub-cell's pyramids */
+        double point[3];
         for (int k = 0; k < 3; ++k)
-            point[k] /= total;
+            point[k] = moment[s][k] / volume[s];
         int count;
         int rc =
             kernel_evaluate(c->rk, point, 1, t, &count, "sub-cell point", row);
@@ -238,18 +248,7 @@ static void mscni_weights(const struct gsn_model *m,
 #pragma omp parallel for schedule(static)
     for (int L = 0; L < m->particle_count; ++L) {
         double v[6] = {0}, x[6][3] = {{0}};
-        for (int e = c->particle_facet_offset[L];
-             e < c->particle_facet_offset[L + 1]; ++e) {
-            int f = c->particle_facet[e], group;
-            double sign = m->facet_owner[f] == L ? 1.0 : -1.0;
-            double volume, centroid[3];
-            pyramid(m, f, L, sign, c->subcells, &volume, centroid, &group);
-            if (!(volume > 1e-12 * m->volume[L]))
-                continue;
-            v[group] += volume;
-            for (int k = 0; k < 3; ++k)
-                x[group][k] += volume * centroid[k];
-        }
+        subcell_pyramids(m, c, L, v, x);
         for (int s = 0; s < c->subcells; ++s) {
             size_t p = c->subcells * (size_t)L + (size_t)s;
             weight[p] = coefficient * v[s];

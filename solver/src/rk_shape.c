@@ -293,6 +293,15 @@ static int grid_cell(const struct gsn_rk *rk, int k, double x)
     return (int)c;
 }
 
+/* The index of the grid cell holding x (clamped to the grid). */
+static size_t grid_index(const struct gsn_rk *rk, const double x[3])
+{
+    return (size_t)grid_cell(rk, 0, x[0]) +
+           (size_t)rk->grid_size[0] *
+               ((size_t)grid_cell(rk, 1, x[1]) +
+                (size_t)rk->grid_size[1] * grid_cell(rk, 2, x[2]));
+}
+
 int gsn_rk_neighbours(const struct gsn_rk *rk, const double x[3], int capacity,
                       int *index)
 {
@@ -409,22 +418,14 @@ int gsn_rk_create(int particle_count, const double *position,
     GSN_CHECK_GOTO(rk->cell_offset && rk->cell_particle, rc, GSN_ERR_MEMORY,
                    fail, "cannot allocate the cell list");
     for (size_t p = 0; p < n; ++p) {
-        const double *xp = position + 3 * p;
-        size_t c = (size_t)grid_cell(rk, 0, xp[0]) +
-                   (size_t)rk->grid_size[0] *
-                       ((size_t)grid_cell(rk, 1, xp[1]) +
-                        (size_t)rk->grid_size[1] * grid_cell(rk, 2, xp[2]));
+        size_t c = grid_index(rk, position + 3 * p);
         rk->cell_offset[c + 1]++;
     }
     for (size_t c = 0; c < cells; ++c)
         rk->cell_offset[c + 1] += rk->cell_offset[c];
     /* Fill in particle order so each cell lists ascending indices. */
     for (size_t p = 0; p < n; ++p) {
-        const double *xp = position + 3 * p;
-        size_t c = (size_t)grid_cell(rk, 0, xp[0]) +
-                   (size_t)rk->grid_size[0] *
-                       ((size_t)grid_cell(rk, 1, xp[1]) +
-                        (size_t)rk->grid_size[1] * grid_cell(rk, 2, xp[2]));
+        size_t c = grid_index(rk, position + 3 * p);
         rk->cell_particle[rk->cell_offset[c]++] = (int)p;
     }
     for (size_t c = cells; c > 0; --c)
