@@ -493,7 +493,7 @@ static int post_chart_write(const char *path, const char *title,
     char temporary[GSN_PATH_SIZE];
     GSN_CALL(gsn_path_temporary(temporary, sizeof temporary, path));
     int rc = gsn_vtk_chart_write(temporary, title, x_label, y_label,
-                                 series_count, names, counts, x, y);
+                                 series_count, names, counts, x, y, NULL);
     if (rc == GSN_OK)
         rc = gsn_file_commit(path);
     if (rc != GSN_OK) {

@@ -28,6 +28,7 @@
 #include <vtkPen.h>
 #include <vtkPlane.h>
 #include <vtkPlot.h>
+#include <vtkPlotPoints.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -356,8 +357,11 @@ const unsigned char CURVE_COLOURS[][3] = {
 int chart_write(const char *path, const char *title, const char *x_label,
                 const char *y_label, int series_count, const char *const *names,
                 const int *counts, const double *const *x,
-                const double *const *y)
+                const double *const *y, const gsn_chart_style *style)
 {
+    const gsn_chart_style plain = {};
+    if (!style)
+        style = &plain;
     vtkNew<vtkContextView> view;
     view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
     view->GetRenderWindow()->SetOffScreenRendering(1);
@@ -372,8 +376,9 @@ int chart_write(const char *path, const char *title, const char *x_label,
     chart->SetSize(
         vtkRectf(110.0f, 90.0f, CHART_WIDTH - 160.0f, CHART_HEIGHT - 160.0f));
     text_style(chart->GetTitleProperties(), 24, true);
-    chart->SetShowLegend(series_count > 1);
-    chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::LEFT);
+    chart->SetShowLegend(series_count > 1 || style->always_legend);
+    chart->GetLegend()->SetHorizontalAlignment(
+        style->legend_right ? vtkChartLegend::RIGHT : vtkChartLegend::LEFT);
     chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
     chart->GetLegend()->SetLabelSize(18);
     const char *labels[2] = {x_label, y_label};
@@ -381,6 +386,7 @@ int chart_write(const char *path, const char *title, const char *x_label,
     for (int a = 0; a < 2; ++a) {
         vtkAxis *axis = chart->GetAxis(axes[a]);
         axis->SetTitle(labels[a]);
+        axis->SetLogScale(style->log_axes != 0);
         text_style(axis->GetTitleProperties(), 20, true);
         text_style(axis->GetLabelProperties(), 18, false);
         axis->GetGridPen()->SetColor(210, 210, 210);
@@ -400,11 +406,18 @@ int chart_write(const char *path, const char *title, const char *x_label,
         table->AddColumn(ys);
         vtkPlot *line = chart->AddPlot(vtkChart::LINE);
         line->SetInputData(table, 0, 1);
+        int colour = style->colour ? style->colour[s] : s;
         const unsigned char *c =
-            CURVE_COLOURS[s % (sizeof CURVE_COLOURS / sizeof *CURVE_COLOURS)];
+            CURVE_COLOURS[colour %
+                          (sizeof CURVE_COLOURS / sizeof *CURVE_COLOURS)];
         line->SetColor(c[0], c[1], c[2], 255);
         line->SetWidth(3.0);
         line->SetLabel(names[s]);
+        vtkPlotPoints *points = vtkPlotPoints::SafeDownCast(line);
+        if (style->markers && points) {
+            points->SetMarkerStyle(vtkPlotPoints::CIRCLE);
+            points->SetMarkerSize(10.0);
+        }
     }
     view->GetRenderWindow()->Render();
     GSN_CALL(window_write_png(view->GetRenderWindow(), path));
@@ -558,11 +571,12 @@ extern "C" int gsn_vtk_chart_write(const char *path, const char *title,
                                    const char *x_label, const char *y_label,
                                    int series_count, const char *const *names,
                                    const int *counts, const double *const *x,
-                                   const double *const *y)
+                                   const double *const *y,
+                                   const struct gsn_chart_style *style)
 {
     try {
         GSN_CALL(chart_write(path, title, x_label, y_label, series_count, names,
-                             counts, x, y));
+                             counts, x, y, style));
     } catch (const std::exception &e) {
         return raise_exception(__func__, e.what());
     } catch (...) {

@@ -54,13 +54,26 @@ int gsn_vtk_grid_render(const struct gsn_vtk_grid *grid,
                         enum gsn_vtk_picture picture, const double bounds[6],
                         const char *title, const char *path);
 
+/* How a chart differs from post's plots (NULL: linear axes, lines only, a
+ * legend at the top left when there are two curves or more, the palette
+ * in series order). */
+struct gsn_chart_style {
+    int log_axes;      /* both axes logarithmic */
+    int markers;       /* a circle at every point */
+    int always_legend; /* a legend even for one curve */
+    int legend_right;  /* the legend at the top right */
+    const int *colour; /* per series: its colour in the palette, or NULL */
+};
+
 /* Draws series_count curves y[s][0..n) against x[s][0..n) (borrowed) as a
- * line chart with a legend into a PNG (needs an X display). */
+ * line chart with a legend into a PNG (needs an X display); style may be
+ * NULL. */
 int gsn_vtk_chart_write(const char *path, const char *title,
                         const char *x_label, const char *y_label,
                         int series_count, const char *const *names,
                         const int *counts, const double *const *x,
-                        const double *const *y);
+                        const double *const *y,
+                        const struct gsn_chart_style *style);
 
 #ifdef __cplusplus
 }
