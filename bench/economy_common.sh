@@ -1,5 +1,18 @@
 # Shared by the economy benches and bearing_capacity.sh (sourced): run, peak, particles and step
-# need $geoscni, $work, $end and $threads; curve needs nothing.
+# need $geoscni, $work, $end and $threads (economy_setup sets them); curve
+# needs nothing.
+
+# economy_setup NAME: threads (THREADS, default 2), the geoscni of $root's
+# $build (exit 2 if not built), the work folder (WORK, or a new one under
+# /tmp), and the run's first line.
+economy_setup() {
+    threads=${THREADS:-2}
+    geoscni=$root/$build/bin/geoscni
+    [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
+    work=${WORK:-$(mktemp -d "/tmp/geoscni_economy_$1.XXXXXX")}
+    mkdir -p "$work"
+    echo "economy_$1: time.end $end s, $threads threads, $(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg), work in $work"
+}
 
 # curve HISTORY [STEP]: the footing load (MN) at every STEP m of settlement
 # (default 0.025), interpolated linearly between the history's rows.

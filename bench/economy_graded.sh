@@ -18,15 +18,8 @@ build=${1:-build}
 end=${2:-3.5}
 uniform=${3:-$root/geometries/slope_I_coarse.yaml}
 graded=${4:-$root/geometries/slope_I_graded_coarse.yaml}
-threads=${THREADS:-2}
-geoscni=$root/$build/bin/geoscni
-[ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
-work=${WORK:-$(mktemp -d /tmp/geoscni_economy_graded.XXXXXX)}
-mkdir -p "$work"
-
 . "$root/bench/economy_common.sh"
-
-echo "economy_graded: time.end $end s, $threads threads, $(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg), work in $work"
+economy_setup graded
 t_uniform=$(run uniform "$uniform")
 t_graded=$(run graded "$graded")
 set -- $(peak uniform)

@@ -17,15 +17,8 @@ build=${1:-build}
 end=${2:-2.5}
 whole=${3:-$root/geometries/slope_II_coarse.yaml}
 half=${4:-$root/geometries/slope_II_half_coarse.yaml}
-threads=${THREADS:-2}
-geoscni=$root/$build/bin/geoscni
-[ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
-work=${WORK:-$(mktemp -d /tmp/geoscni_economy_symmetry.XXXXXX)}
-mkdir -p "$work"
-
 . "$root/bench/economy_common.sh"
-
-echo "economy_symmetry: time.end $end s, $threads threads, $(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg), work in $work"
+economy_setup symmetry
 t_whole=$(run whole "$whole")
 t_half=$(run half "$half")
 n_whole=$(particles whole)
