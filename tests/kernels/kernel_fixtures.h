@@ -17,6 +17,26 @@ static inline double fixture_uniform(unsigned long long *s)
     return (double)(*s >> 11) / 9007199254740992.0;
 }
 
+/* n^3 particle positions x (3 each) on [0, (n - 1) h]^3, lattice order,
+ * the interior coordinates jittered by +-jitter h (a particle on a face
+ * stays on it). */
+static inline void fixture_jittered_lattice(int n, double h, double jitter,
+                                            unsigned long long seed, double *x)
+{
+    int p = 0;
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i, ++p) {
+                int ijk[3] = {i, j, k};
+                for (int d = 0; d < 3; ++d) {
+                    double v = ijk[d] * h;
+                    if (ijk[d] > 0 && ijk[d] < n - 1)
+                        v += jitter * h * (2.0 * fixture_uniform(&seed) - 1.0);
+                    x[3 * p + d] = v;
+                }
+            }
+}
+
 /* Adds one rectangular facet: centre c, normal axis d (+1 direction from
  * the owner), half-extents e[3] (e[d] unused), gauss 1 or 2 per direction. */
 static inline void fixture_facet(struct gsn_model *m, int *f, int *qp,

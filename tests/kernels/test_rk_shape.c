@@ -4,36 +4,11 @@
  * independence, and the error for a singular moment matrix. */
 #include "geoscni/error.h"
 #include "geoscni/kernels.h"
+#include "kernel_fixtures.h"
 #include "testing.h"
 
 #include <omp.h>
 #include <string.h>
-
-/* A small deterministic generator (no libc rand state). */
-static double uniform(unsigned long long *s)
-{
-    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(*s >> 11) / 9007199254740992.0;
-}
-
-/* n^3 particles on [0,1]^3 with spacing h = 1/(n-1), jittered by
- * +-jitter h in each direction (boundary particles stay on their faces). */
-static void lattice(int n, double jitter, unsigned long long seed, double *x)
-{
-    double h = 1.0 / (n - 1);
-    int p = 0;
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i, ++p) {
-                int ijk[3] = {i, j, k};
-                for (int d = 0; d < 3; ++d) {
-                    double v = ijk[d] * h;
-                    if (ijk[d] > 0 && ijk[d] < n - 1)
-                        v += jitter * h * (2.0 * uniform(&seed) - 1.0);
-                    x[3 * p + d] = v;
-                }
-            }
-}
 
 static int brute_neighbours(const struct gsn_rk *rk, const double *x, int *out)
 {
@@ -91,7 +66,8 @@ static void check_basis(int order, double jitter, double support)
     int np = N * N * N;
     double *x = malloc(3 * (size_t)np * sizeof *x);
     double *h = malloc((size_t)np * sizeof *h);
-    lattice(N, jitter, 12345ULL + (unsigned long long)order, x);
+    fixture_jittered_lattice(N, 1.0 / (N - 1), jitter,
+                             12345ULL + (unsigned long long)order, x);
     for (int p = 0; p < np; ++p)
         h[p] = 1.0 / (N - 1);
     struct gsn_rk *rk = NULL;
@@ -107,7 +83,7 @@ static void check_basis(int order, double jitter, double support)
     for (int t = 0; t < POINTS; ++t) {
         double q[3];
         for (int k = 0; k < 3; ++k)
-            q[k] = uniform(&seed);
+            q[k] = fixture_uniform(&seed);
         if (t < 8) /* the corners of the box */
             for (int k = 0; k < 3; ++k)
                 q[k] = (t >> k) & 1;
@@ -159,7 +135,7 @@ static void check_rows_threads(void)
     int np = N * N * N;
     double *x = malloc(3 * (size_t)np * sizeof *x);
     double *h = malloc((size_t)np * sizeof *h);
-    lattice(N, 0.2, 7ULL, x);
+    fixture_jittered_lattice(N, 1.0 / (N - 1), 0.2, 7ULL, x);
     for (int p = 0; p < np; ++p)
         h[p] = 1.0 / (N - 1);
     struct gsn_rk *rk = NULL;

@@ -9,30 +9,12 @@
 #include "geoscni/pre.h"
 #include "kernel_fixtures.h"
 
-/* n^3 particles on [0, L]^3, interior coordinates jittered by +-jitter h
- * (particles on a face stay on it). */
-static double *jittered(int n, double h, double jitter, unsigned long long s)
-{
-    double *x = malloc(3 * (size_t)n * n * n * sizeof *x);
-    int p = 0;
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i, ++p) {
-                int ijk[3] = {i, j, k};
-                for (int d = 0; d < 3; ++d) {
-                    double v = ijk[d] * h;
-                    if (ijk[d] > 0 && ijk[d] < n - 1)
-                        v += jitter * h * (2.0 * fixture_uniform(&s) - 1.0);
-                    x[3 * p + d] = v;
-                }
-            }
-    return x;
-}
-
 static void check(int n, double jitter, int facet_points)
 {
     const double h = 0.31;
-    double *x = jittered(n, h, jitter, 2024ULL + (unsigned long long)n);
+    double *x = malloc(3 * (size_t)n * n * n * sizeof *x);
+    TEST_TRUE(x != NULL);
+    fixture_jittered_lattice(n, h, jitter, 2024ULL + (unsigned long long)n, x);
     const double lo[3] = {0, 0, 0},
                  hi[3] = {(n - 1) * h, (n - 1) * h, (n - 1) * h};
     struct gsn_model m;
