@@ -48,9 +48,6 @@ struct component_constraint {
     int *free_offset; /* count + 1 */
     int *free_index;  /* I */
     double *free_value;
-    klu_common common;
-    klu_symbolic *symbolic;
-    klu_numeric *numeric;
 };
 
 struct gsn_constraints {
@@ -73,10 +70,6 @@ void gsn_constraints_destroy(struct gsn_constraints **constraints)
     struct gsn_constraints *k = *constraints;
     for (int c = 0; c < 3; ++c) {
         struct component_constraint *cc = &k->component[c];
-        if (cc->numeric)
-            klu_free_numeric(&cc->numeric, &cc->common);
-        if (cc->symbolic)
-            klu_free_symbolic(&cc->symbolic, &cc->common);
         free(cc->particle);
         free(cc->velocity);
         free(cc->row_offset);
@@ -149,9 +142,10 @@ static int collect_prescriptions(const struct gsn_model *m,
 
 /* Copies KLU's factors P (R \ Lambda) Q = L U (one block: no BTF) into
  * the arrays of the step's solve (factor_solve). */
-static int copy_factors(struct component_constraint *cc)
+static int copy_factors(struct component_constraint *cc, klu_symbolic *symbolic,
+                        klu_numeric *numeric, klu_common *common)
 {
-    int n = cc->count, lnz = cc->numeric->lnz, unz = cc->numeric->unz;
+    int n = cc->count, lnz = numeric->lnz, unz = numeric->unz;
     int *Lp = malloc(sizeof(int) * ((size_t)n + 1));
     int *Up = malloc(sizeof(int) * ((size_t)n + 1));
     int *Li = malloc(sizeof(int) * (size_t)lnz);
@@ -176,13 +170,12 @@ static int copy_factors(struct component_constraint *cc)
                        cc->upper_row && cc->upper_value && cc->upper_diagonal &&
                        cc->pivot_work,
                    rc, GSN_ERR_MEMORY, done, "out of memory");
-    GSN_CHECK_GOTO(klu_extract(cc->numeric, cc->symbolic, Lp, Li, Lx, Up, Ui,
-                               Ux, NULL, NULL, NULL, cc->pivot_row,
-                               cc->column_order, cc->row_scale, NULL,
-                               &cc->common),
+    GSN_CHECK_GOTO(klu_extract(numeric, symbolic, Lp, Li, Lx, Up, Ui, Ux, NULL,
+                               NULL, NULL, cc->pivot_row, cc->column_order,
+                               cc->row_scale, NULL, common),
                    rc, GSN_ERR_NUMERICAL, done,
                    "the boundary factors could not be read (KLU status %d)",
-                   cc->common.status);
+                   common->status);
     /* L: columns ascending, the unit diagonal left out. */
     for (int k = 0; k < n; ++k) {
         int at = cc->lower_offset[k];
@@ -255,6 +248,9 @@ static int factorize(struct component_constraint *cc, char name)
     int *row = malloc(sizeof(int) * (size_t)(entries ? entries : 1));
     double *value = malloc(sizeof(double) * (size_t)(entries ? entries : 1));
     double *b = malloc(sizeof(double) * (size_t)n);
+    klu_common common;
+    klu_symbolic *symbolic = NULL;
+    klu_numeric *numeric = NULL;
     int rc = GSN_OK;
     GSN_CHECK_GOTO(column_offset && row && value && b, rc, GSN_ERR_MEMORY, done,
                    "out of memory");
@@ -271,28 +267,27 @@ static int factorize(struct component_constraint *cc, char name)
     for (int k = n; k > 0; --k)
         column_offset[k] = column_offset[k - 1];
     column_offset[0] = 0;
-    klu_defaults(&cc->common);
-    cc->common.btf = 0; /* one block: the copied factors need no F */
-    cc->symbolic = klu_analyze(n, column_offset, row, &cc->common);
-    GSN_CHECK_GOTO(cc->symbolic, rc, GSN_ERR_NUMERICAL, done,
+    klu_defaults(&common);
+    common.btf = 0; /* one block: the copied factors need no F */
+    symbolic = klu_analyze(n, column_offset, row, &common);
+    GSN_CHECK_GOTO(symbolic, rc, GSN_ERR_NUMERICAL, done,
                    "the %c boundary matrix (%d particles) could not be "
                    "analysed (KLU status %d)",
-                   name, n, cc->common.status);
-    cc->numeric =
-        klu_factor(column_offset, row, value, cc->symbolic, &cc->common);
+                   name, n, common.status);
+    numeric = klu_factor(column_offset, row, value, symbolic, &common);
     GSN_CHECK_GOTO(
-        cc->numeric && cc->common.status == KLU_OK, rc, GSN_ERR_NUMERICAL, done,
+        numeric && common.status == KLU_OK, rc, GSN_ERR_NUMERICAL, done,
         "the %c boundary matrix Psi_K(X_J) of %d constrained particles "
         "is singular (KLU status %d); check for duplicate boundary "
         "particles",
-        name, n, cc->common.status);
-    klu_rcond(cc->symbolic, cc->numeric, &cc->common);
-    GSN_CHECK_GOTO(cc->common.rcond > CONSTRAINT_RCOND_LIMIT, rc,
-                   GSN_ERR_NUMERICAL, done,
+        name, n, common.status);
+    klu_rcond(symbolic, numeric, &common);
+    GSN_CHECK_GOTO(common.rcond > CONSTRAINT_RCOND_LIMIT, rc, GSN_ERR_NUMERICAL,
+                   done,
                    "the %c boundary matrix of %d constrained particles is "
                    "too badly conditioned (reciprocal condition %.3g)",
-                   name, n, cc->common.rcond);
-    GSN_CALL_GOTO(copy_factors(cc), rc, done);
+                   name, n, common.rcond);
+    GSN_CALL_GOTO(copy_factors(cc, symbolic, numeric, &common), rc, done);
     /* The copy solves Lambda x = b, b_i = 1 + i mod 7. */
     for (int i = 0; i < n; ++i)
         b[i] = 1.0 + i % 7;
@@ -310,8 +305,10 @@ static int factorize(struct component_constraint *cc, char name)
                    "the %c boundary solve has a backward error of %.3g", name,
                    worst);
 done:
-    klu_free_numeric(&cc->numeric, &cc->common);
-    klu_free_symbolic(&cc->symbolic, &cc->common);
+    if (numeric)
+        klu_free_numeric(&numeric, &common);
+    if (symbolic)
+        klu_free_symbolic(&symbolic, &common);
     free(column_offset);
     free(row);
     free(value);
