@@ -43,9 +43,7 @@
 struct boundary_set {
     int surface; /* index in the model */
     int count;
-    int *particle;      /* the particles on the entry's surface */
-    int *reaction_mask; /* per particle: components whose constraint
-                           reaction this entry reports (bit k) */
+    int *particle; /* the particles on the entry's surface */
 };
 
 struct run {
@@ -95,33 +93,12 @@ static int build_boundary_sets(struct run *r)
         struct boundary_set *set = &r->boundary[b];
         set->surface = surface;
         set->particle = malloc(sizeof(int) * (size_t)(m->particle_count + 1));
-        set->reaction_mask = calloc((size_t)m->particle_count + 1, sizeof(int));
-        GSN_CHECK(set->particle && set->reaction_mask, GSN_ERR_MEMORY,
-                  "out of memory");
+        GSN_CHECK(set->particle, GSN_ERR_MEMORY, "out of memory");
         for (int p = 0; p < m->particle_count; ++p)
             if (gsn_model_particle_on_surface(m, p, surface))
                 set->particle[set->count++] = p;
     }
     return GSN_OK;
-}
-
-/* The components whose constraint reaction each entry reports: at each of
- * its particles, those it prescribes (gsn_constraints_entry: the first
- * entry in case order that constrains a component, the one rule of
- * constraint.c), so that a particle on two surfaces counts once. */
-static void claim_reactions(struct run *r)
-{
-    for (int b = 0; b < r->c->boundary_count; ++b) {
-        struct boundary_set *set = &r->boundary[b];
-        for (int s = 0; s < set->count; ++s) {
-            int mask = 0;
-            for (int k = 0; k < 3; ++k)
-                if (gsn_constraints_entry(r->constraints, set->particle[s],
-                                          k) == b)
-                    mask |= 1 << k;
-            set->reaction_mask[s] = mask;
-        }
-    }
 }
 
 /* Fills r->frame from the loop's state at its current time: the fields of
@@ -190,7 +167,8 @@ static int write_history_header(struct run *r)
 /* One history row from the frame just filled: the mean u(X_J) over the
  * surface's particles and the force the supports apply through it, the
  * resultant of its tractions plus the constraint reactions of the
- * components it prescribes (DESIGN.md; docs/solver.md, "Boundary values"). */
+ * components the entry holds (gsn_constraints_entry: a particle on two
+ * surfaces counts once) (DESIGN.md; docs/solver.md, "Boundary values"). */
 static int write_history_row(struct run *r)
 {
     const struct gsn_explicit *e = r->explicit_loop;
@@ -207,7 +185,8 @@ static int write_history_row(struct run *r)
             gsn_constraints_surface_mask(r->constraints, set->surface), force);
         for (int s = 0; s < set->count; ++s)
             for (int k = 0; k < 3; ++k)
-                if (set->reaction_mask[s] & (1 << k))
+                if (gsn_constraints_entry(r->constraints, set->particle[s],
+                                          k) == b)
                     force[k] += e->reaction[3 * set->particle[s] + k];
         for (int k = 0; k < 3; ++k)
             mean[k] = set->count ? mean[k] / set->count : 0.0;
@@ -596,10 +575,8 @@ static void run_free(struct run *r)
     gsn_quadrature_destroy(&r->quadrature);
     gsn_model_free(&r->model);
     gsn_frame_free(&r->frame);
-    for (int b = 0; b < GSN_MAX_BOUNDARIES; ++b) {
+    for (int b = 0; b < GSN_MAX_BOUNDARIES; ++b)
         free(r->boundary[b].particle);
-        free(r->boundary[b].reaction_mask);
-    }
     if (r->history)
         fclose(r->history);
     gsn_h5_close(&r->results);
@@ -622,7 +599,6 @@ static int run_setup(struct run *r)
                                        &c->material, &r->material));
     GSN_CALL(gsn_constraints_create(
         &r->model, c, &r->quadrature->particle_values, &r->constraints));
-    claim_reactions(r);
     GSN_CALL(gsn_explicit_create(&r->model, r->quadrature, r->material,
                                  r->constraints, c, c->time_step,
                                  &r->explicit_loop));
