@@ -137,7 +137,8 @@ struct gsn_explicit {
     double *domain_weight;
     int *point_owner; /* main points: the particle whose domain holds it */
     unsigned char *constrained; /* particles: constrained components (bit k:
-                                   component k) */
+                                   component k), copied once from the
+                                   constraints for the step's loops */
     struct gsn_step_sums *step_partial; /* the sums of each piece of the
                                            step's loops (explicit.c) */
 };

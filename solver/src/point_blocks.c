@@ -211,7 +211,8 @@ static int build_particle_slots(struct gsn_point_blocks *b, int particle_count)
 /* Memory for the packed stream, which the pass reads front to back every
  * step: on 2 MB pages where the system allows it (Linux transparent huge
  * pages on request), so that the hardware prefetcher, which stops at page
- * boundaries, runs on and the pages' translations stay cached. */
+ * boundaries, runs on and the pages' translations stay cached (measured on
+ * Slope I: MSCNI's 343 MB stream +3%, SCNI's 91 MB unchanged). */
 static void *stream_alloc(size_t bytes)
 {
     enum { HUGE_PAGE = 2 << 20 };
