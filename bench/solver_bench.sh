@@ -9,9 +9,13 @@
 # from a build older than that report). INTEGRATION replaces the case's
 # integration (e.g. scni for plain SCNI; slope_I.yaml has MSCNI); THREADS
 # lists the thread counts to run.
+# LOADED=T measures the pass with damage and plasticity at work: the
+# footing at 5 times the case's speed (its ramp kept) is first solved to T
+# s once, and every run restarts from that state for STEPS steps (Slope I
+# with plain SCNI: T = 2 is past the peak, damage up to 0.85).
 # Usage: bench/solver_bench.sh [BUILD_DIR] [RUNS] [STEPS] [CASE] [INTEGRATION]
 #        (default build, 3, 300, geometries/slope_I.yaml, the case's)
-#        THREADS="1 2" (default) in the environment
+#        THREADS="1 2" (default) and LOADED (unset) in the environment
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-build}
@@ -24,23 +28,49 @@ geoscni=$root/$build/bin/geoscni
 [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
 work=$(mktemp -d /tmp/geoscni_solver_bench.XXXXXX)
 trap 'rm -rf "$work"' EXIT
+loaded=${LOADED:-}
 # The case with the run cut to STEPS steps of 1e-3 s (and no ramp, which
-# may be longer than the cut run).
-sed -e "s|^geometry: *|geometry: $(dirname "$case_file")/|" \
-    -e "s|^\( *end:\).*|\1 $(echo "$steps" | awk '{print $1 * 1e-3}')|" \
-    -e "s|^\( *ramp:\).*|\1 0|" \
-    -e "s|^\( *every:\).*|\1 1000|" "$case_file" >"$work/case.yaml"
+# may be longer than the cut run); with LOADED, STEPS steps after T s, the
+# footing 5 times faster and the ramp kept.
+if [ -n "$loaded" ]; then
+    speed=$(sed -n 's/.*footing: *{velocity: \[null, null, -\([0-9.e-]*\)\]}.*/\1/p' "$case_file")
+    fast=$(echo "$speed" | awk '{print $1 * 5}')
+    sed -e "s|^geometry: *|geometry: $(dirname "$case_file")/|" \
+        -e "s|velocity: \[null, null, -$speed\]|velocity: [null, null, -$fast]|" \
+        -e "s|^\( *end:\).*|\1 $(echo "$loaded $steps" | awk '{print $1 + $2 * 1e-3}')|" \
+        -e "s|^\( *every:\).*|\1 1000|" "$case_file" >"$work/case.yaml"
+else
+    sed -e "s|^geometry: *|geometry: $(dirname "$case_file")/|" \
+        -e "s|^\( *end:\).*|\1 $(echo "$steps" | awk '{print $1 * 1e-3}')|" \
+        -e "s|^\( *ramp:\).*|\1 0|" \
+        -e "s|^\( *every:\).*|\1 1000|" "$case_file" >"$work/case.yaml"
+fi
 if [ -n "$integration" ]; then
     sed -i -e "s|^integration:.*|integration: $integration|" "$work/case.yaml"
 fi
 "$geoscni" pre "$work/case.yaml" -o "$work/out" -q
+restart=
+if [ -n "$loaded" ]; then
+    sed -e "s|^\( *end:\).*|\1 $loaded|" "$work/case.yaml" >"$work/load.yaml"
+    "$geoscni" solve "$work/load.yaml" -o "$work/out" -q || {
+        echo "the loading run to $loaded s failed: see above" >&2
+        exit 1
+    }
+    mv "$work/out" "$work/loaded"
+    restart=--restart
+    echo "loaded to t = $loaded s (footing at $fast m/s): max damage $(tail -n 1 "$work/loaded/history.csv" | awk -F, '{print $(NF - 1)}')"
+fi
 echo "geoscni solve $(basename "$case_file") ($(grep '^integration:' "$work/case.yaml" | sed 's/ *#.*//')), $steps steps, $runs runs per thread count ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
 for threads in $thread_counts; do
     i=1
     : >"$work/rates.$threads"
     while [ "$i" -le "$runs" ]; do
+        if [ -n "$loaded" ]; then
+            rm -rf "$work/out"
+            cp -r "$work/loaded" "$work/out"
+        fi
         OMP_WAIT_POLICY=passive "$geoscni" solve "$work/case.yaml" -o "$work/out" -j "$threads" \
-            >"$work/log" 2>&1
+            $restart >"$work/log" 2>&1
         rate=$(tr '\r' '\n' <"$work/log" | grep 'took' | sed 's/.*  \([0-9.e+]*\) particle-steps.*/\1/')
         particles=$(grep '^solver:' "$work/log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
         phases=$(grep '^step time:' "$work/log" | sed 's/^step time: //')
