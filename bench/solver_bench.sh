@@ -70,7 +70,10 @@ for threads in $thread_counts; do
             cp -r "$work/loaded" "$work/out"
         fi
         OMP_WAIT_POLICY=passive "$geoscni" solve "$work/case.yaml" -o "$work/out" -j "$threads" \
-            $restart >"$work/log" 2>&1
+            $restart >"$work/log" 2>&1 || {
+            echo "  $threads thread(s), run $i failed: $(grep 'error:' "$work/log")" >&2
+            exit 1
+        }
         rate=$(tr '\r' '\n' <"$work/log" | grep 'took' | sed 's/.*  \([0-9.e+]*\) particle-steps.*/\1/')
         particles=$(grep '^solver:' "$work/log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
         phases=$(grep '^step time:' "$work/log" | sed 's/^step time: //')
