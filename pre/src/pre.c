@@ -176,6 +176,37 @@ static void face_hash_free(struct face_hash *h)
 
 /* ---- gmsh -------------------------------------------------------------- */
 
+/* What gmsh changes in the caller's process while it runs: it computes with
+ * floating-point exceptions (HXT divides by zero), so the caller's traps
+ * are held, and it sets OpenMP's thread count to its General.NumThreads,
+ * so the caller's count (geoscni run solves next) is given back. */
+struct gmsh_session {
+    fenv_t environment;
+    int threads;
+};
+
+static int gmsh_session_begin(struct gmsh_session *s, int argc, char **argv)
+{
+    int ierr = 0;
+    s->threads = omp_get_max_threads();
+    feholdexcept(&s->environment);
+    gmshInitialize(argc, argv, 0, &ierr);
+    if (ierr != 0) {
+        fesetenv(&s->environment);
+        omp_set_num_threads(s->threads);
+    }
+    GSN_CHECK(ierr == 0, GSN_ERR_LIBRARY, "gmsh could not be initialized");
+    return GSN_OK;
+}
+
+static void gmsh_session_end(struct gmsh_session *s)
+{
+    int ierr = 0;
+    gmshFinalize(&ierr);
+    fesetenv(&s->environment);
+    omp_set_num_threads(s->threads);
+}
+
 static int gmsh_open_geometry(const struct gsn_case *c)
 {
     int ierr = 0;
@@ -708,21 +739,15 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
               "%s: particles.spacing must be positive", c->path);
 
     double t0 = omp_get_wtime();
-    int ierr = 0, rc = GSN_OK;
+    int rc = GSN_OK;
     /* a .geo file's DefineConstant[h = ...] takes the spacing: in gmsh 4.8
      * only "-setnumber" does this (gmshOnelabSetNumber before gmshOpen does
      * not reach the parser) */
     char spacing[64];
     snprintf(spacing, sizeof spacing, "%.17g", c->particle_spacing);
     char *argv[] = {"geoscni", "-setnumber", "h", spacing, NULL};
-    /* gmsh computes with floating-point exceptions (HXT divides by zero):
-     * hold the caller's traps while it runs, restore them after */
-    fenv_t environment;
-    feholdexcept(&environment);
-    gmshInitialize(4, argv, 0, &ierr);
-    if (ierr != 0)
-        fesetenv(&environment);
-    GSN_CHECK(ierr == 0, GSN_ERR_LIBRARY, "gmsh could not be initialized");
+    struct gmsh_session session;
+    GSN_CALL(gmsh_session_begin(&session, 4, argv));
     struct mesh mesh;
     memset(&mesh, 0, sizeof mesh);
     struct domain_result r;
@@ -731,12 +756,9 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
     memset(&m, 0, sizeof m);
     double estimate = 0.0;
     /* HXT takes OpenMP's thread count, whatever gmsh's options say */
-    int omp_threads = omp_get_max_threads();
     omp_set_num_threads(1);
     rc = pre_mesh(c, options, &mesh, &estimate);
-    omp_set_num_threads(omp_threads);
-    gmshFinalize(&ierr);
-    fesetenv(&environment);
+    gmsh_session_end(&session);
     if (rc != GSN_OK)
         goto done;
     double t_mesh = omp_get_wtime() - t0;
@@ -797,12 +819,8 @@ done:
 int gsn_pre_gmsh_version(char *out, size_t size)
 {
     int ierr = 0;
-    fenv_t environment;
-    feholdexcept(&environment);
-    gmshInitialize(0, NULL, 0, &ierr);
-    if (ierr != 0)
-        fesetenv(&environment);
-    GSN_CHECK(ierr == 0, GSN_ERR_LIBRARY, "gmsh could not be initialized");
+    struct gmsh_session session;
+    GSN_CALL(gmsh_session_begin(&session, 0, NULL));
     gmshOptionSetNumber("General.Terminal", 0, &ierr);
     char *version = NULL;
     gmshOptionGetString("General.Version", &version, &ierr);
@@ -810,8 +828,7 @@ int gsn_pre_gmsh_version(char *out, size_t size)
     if (ok)
         snprintf(out, size, "%s", version);
     gmshFree(version);
-    gmshFinalize(&ierr);
-    fesetenv(&environment);
+    gmsh_session_end(&session);
     GSN_CHECK(ok, GSN_ERR_LIBRARY, "gmsh did not report its version");
     return GSN_OK;
 }

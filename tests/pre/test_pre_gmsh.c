@@ -3,7 +3,8 @@
  * (curved boundary) and a box, each against the exact volume and face areas
  * where the body is polyhedral; the physical-surface tags of particles and
  * facets checked against the geometry; the same particles and facets on a
- * second run with another thread count. */
+ * second run with another thread count; the caller's OpenMP thread count
+ * kept. */
 #include "geoscni/case.h"
 #include "geoscni/error.h"
 #include "geoscni/model.h"
@@ -11,6 +12,7 @@
 #include "testing.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -159,7 +161,13 @@ static void test_box(void)
 {
     struct gsn_model m;
     struct gsn_case c;
-    if (run_pre("../../geometries/box.yaml", 0, &m, &c) != GSN_OK) {
+    /* gmsh sets OpenMP's thread count to its General.NumThreads; pre must
+     * give the caller's back (geoscni run solves in the same process) */
+    const int threads = omp_get_max_threads() + 1;
+    omp_set_num_threads(threads);
+    int rc = run_pre("../../geometries/box.yaml", 0, &m, &c);
+    TEST_INT(omp_get_max_threads(), threads);
+    if (rc != GSN_OK) {
         TEST_TRUE(0);
         return;
     }
