@@ -3,11 +3,13 @@
  * OUTDIR/results.h5 (frames and a restart checkpoint) and history.csv
  * (DESIGN.md, "What a run leaves"). results.h5 is written as
  * results.h5.part and renamed when the run ends, also when it ends in a
- * numerical failure, so the frames written so far stay readable. */
+ * numerical failure or is interrupted (SIGINT, SIGTERM: a checkpoint is
+ * written first), so the frames written so far stay readable. */
 #include "constraint.h"
 #include "explicit.h"
 #include "geoscni/error.h"
 #include "geoscni/files.h"
+#include "geoscni/h5io.h"
 #include "geoscni/kernels.h"
 #include "geoscni/model.h"
 #include "geoscni/results.h"
@@ -17,6 +19,7 @@
 
 #include <math.h>
 #include <omp.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -49,6 +52,7 @@ struct boundary_set {
 struct run {
     const struct gsn_case *c;
     const struct gsn_solve_options *options;
+    const char *outdir;
     char model_path[GSN_PATH_SIZE];
     char results_path[GSN_PATH_SIZE];
     char results_temporary[GSN_PATH_SIZE];
@@ -305,6 +309,24 @@ static int read_checkpoint(struct run *r)
     GSN_CALL_GOTO(gsn_h5_attr_read_double(group, GSN_CHECKPOINT_ATTR_RATIO_TIME,
                                           &r->kinetic_ratio_time),
                   rc, done);
+    double saved_time = 0.0;
+    GSN_CALL_GOTO(
+        gsn_h5_attr_read_double(group, GSN_FRAME_ATTR_TIME, &saved_time), rc,
+        done);
+    /* the same step gives the same time to rounding; another step would
+     * continue the old state on another clock */
+    GSN_CHECK_GOTO(fabs(saved_time - (double)step * e->dt) <=
+                       1e-9 * fmax(saved_time, e->dt),
+                   rc, GSN_ERR_INPUT, done,
+                   "%s: its checkpoint is at step %d, t = %.9g s, but this "
+                   "run's time step %.9g s puts that step at %.9g s: the time "
+                   "step changed; start over without --restart",
+                   r->results_path, step, saved_time, e->dt,
+                   (double)step * e->dt);
+    GSN_CHECK_GOTO(step <= r->total_steps, rc, GSN_ERR_INPUT, done,
+                   "%s: its checkpoint is at t = %.6g s, after this case's "
+                   "time.end %.6g s: a restart can only run further",
+                   r->results_path, saved_time, r->c->time_end);
     e->step = step;
     e->time = (double)step * e->dt;
     e->kinetic_energy = energy[0];
@@ -477,6 +499,49 @@ static void print_phases(const struct gsn_explicit *e)
            100.0 * t[GSN_PHASE_UPDATES] / total, total);
 }
 
+/* The signal that asked the loop to stop (SIGINT, SIGTERM), or 0. */
+static volatile sig_atomic_t stop_signal;
+
+static void request_stop(int signal_number)
+{
+    stop_signal = signal_number;
+}
+
+/* Catches SIGINT and SIGTERM once (install = 1; a second one ends the
+ * process at once), or gives the handlers back (install = 0). */
+static void catch_stop_signals(int install, struct sigaction previous[2])
+{
+    static const int signals[2] = {SIGINT, SIGTERM};
+    struct sigaction action;
+    memset(&action, 0, sizeof action);
+    action.sa_handler = request_stop;
+    action.sa_flags = SA_RESETHAND;
+    sigemptyset(&action.sa_mask);
+    for (int k = 0; k < 2; ++k) {
+        if (install)
+            sigaction(signals[k], &action, &previous[k]);
+        else
+            sigaction(signals[k], &previous[k], NULL);
+    }
+    stop_signal = 0;
+}
+
+/* After a stop signal: the checkpoint of the step just done, so that
+ * --restart continues from it (the frames so far are kept as they are). */
+static int stop_for_signal(struct run *r)
+{
+    const struct gsn_explicit *e = r->explicit_loop;
+    int signal_number = stop_signal;
+    GSN_CALL(write_checkpoint(r));
+    return gsn_error_raise(
+        GSN_ERR_INTERRUPTED, __FILE__, __LINE__, __func__,
+        "%s at step %ld of %ld, t = %.6g s: the checkpoint of this step is "
+        "written; continue with 'geoscni solve %s -o %s --restart' (or run "
+        "--restart)",
+        signal_number == SIGTERM ? "terminated" : "interrupted", e->step,
+        r->total_steps, e->time, r->c->path, r->outdir);
+}
+
 static int run_loop(struct run *r)
 {
     struct gsn_explicit *e = r->explicit_loop;
@@ -484,6 +549,8 @@ static int run_loop(struct run *r)
     long first = e->step;
     int quiet = r->options->quiet;
     while (e->step < r->total_steps) {
+        if (stop_signal)
+            return stop_for_signal(r);
         GSN_CALL(gsn_explicit_step(e));
         GSN_CALL(check_energy(r));
         /* Frames at the steps nearest the frame times before the end, and
@@ -507,6 +574,59 @@ static int run_loop(struct run *r)
     if (!quiet)
         print_phases(e);
     return GSN_OK;
+}
+
+/* Line `from` of a resolved case (gsn_case_write_yaml) into out, without
+ * what a restart may change: the header comment (the case file's path) and
+ * time.end (a restart may run further). Returns the next line, or NULL. */
+static const char *restart_case_line(const char *from, char *out, size_t size)
+{
+    static const char time_key[] = "time: {end: ";
+    out[0] = '\0';
+    if (!from)
+        return NULL;
+    const char *newline = strchr(from, '\n');
+    size_t n = newline ? (size_t)(newline - from) : strlen(from);
+    n = n < size ? n : size - 1;
+    memcpy(out, from, n);
+    out[n] = '\0';
+    if (out[0] == '#')
+        out[0] = '\0';
+    char *rest = strstr(out, ", ");
+    if (!strncmp(out, time_key, sizeof time_key - 1) && rest)
+        memmove(out + strlen("time: {"), rest + 2, strlen(rest + 2) + 1);
+    return newline && newline[1] ? newline + 1 : NULL;
+}
+
+/* A restart continues the case its results were started with: refused when
+ * anything but time.end differs (another material or step would continue
+ * the old state with the new case, unnoticed). The stored case becomes this
+ * one (its time.end). */
+static int check_restart_case(struct run *r)
+{
+    char *now = NULL, *then = NULL;
+    GSN_CALL(gsn_case_to_yaml_string(r->c, &now));
+    int rc = gsn_h5_attr_read_string(r->results, GSN_ATTR_CASE, &then);
+    const char *a = now, *b = then;
+    char line_now[4096], line_then[4096];
+    while (rc == GSN_OK && (a || b)) {
+        a = restart_case_line(a, line_now, sizeof line_now);
+        b = restart_case_line(b, line_then, sizeof line_then);
+        if (strcmp(line_now, line_then) != 0)
+            rc = gsn_error_raise(
+                GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
+                "%s: --restart continues the run in %s, which was started "
+                "from another case: it had '%s' where this case has '%s'; "
+                "only time.end may change for a restart: restart with the "
+                "case it was started with, or start over without --restart",
+                r->c->path, r->results_path, line_then + strspn(line_then, " "),
+                line_now + strspn(line_now, " "));
+    }
+    if (rc == GSN_OK)
+        rc = gsn_h5_attr_write_string(r->results, GSN_ATTR_CASE, now);
+    free(now);
+    free(then);
+    return rc;
 }
 
 /* Opens results and history for a fresh run, or for a restart from the
@@ -536,7 +656,12 @@ static int open_outputs(struct run *r)
                   r->results_path);
     GSN_CALL(gsn_h5_open(r->results_temporary, GSN_FILE_KIND_RESULTS, 1,
                          &r->results));
+    GSN_CALL(check_restart_case(r));
     GSN_CALL(read_checkpoint(r));
+    if (!r->options->quiet)
+        printf("restart: from the checkpoint at step %ld of %ld, t = %.6g s\n",
+               e->step, r->total_steps, e->time);
+    fflush(stdout);
     /* The checkpoint's step wrote a frame; later ones are written again. */
     GSN_CALL(gsn_results_frames_drop_after(r->results, (int)e->step,
                                            &r->frame_count));
@@ -582,6 +707,58 @@ static void run_free(struct run *r)
     gsn_h5_close(&r->results);
 }
 
+/* The pre signature (gsn_case_pre_signature) with the geometry's folder
+ * left out, so that a project moved elsewhere still matches its model. */
+static void signature_without_folder(const char *signature, char *out,
+                                     size_t size)
+{
+    static const char key[] = "geometry=";
+    const char *end = strchr(signature, ';');
+    const char *name = signature + sizeof key - 1;
+    for (const char *c = name; end && c < end; ++c)
+        if (*c == '/')
+            name = c + 1;
+    size_t used = 0;
+    if (strncmp(signature, key, sizeof key - 1) != 0 || !end)
+        name = signature;
+    else
+        for (const char *c = key; *c && used + 1 < size; ++c)
+            out[used++] = *c;
+    for (const char *c = name; *c && used + 1 < size; ++c)
+        out[used++] = *c;
+    out[used] = '\0';
+}
+
+/* model.h5 must have been made by pre from this case's geometry, spacing,
+ * facet points and refinements (a model made without pre, by a test, has
+ * no signature and is taken as it is). */
+static int check_model_source(const struct run *r)
+{
+    char wanted[GSN_PRE_SIGNATURE_SIZE], a[GSN_PRE_SIGNATURE_SIZE];
+    char b[GSN_PRE_SIGNATURE_SIZE];
+    GSN_CALL(gsn_case_pre_signature(r->c, wanted, sizeof wanted));
+    hid_t file = H5I_INVALID_HID;
+    GSN_CALL(gsn_h5_open(r->model_path, GSN_FILE_KIND_MODEL, 0, &file));
+    char *stored = NULL;
+    int rc = GSN_OK;
+    if (H5Aexists(file, GSN_ATTR_PRE_SIGNATURE) > 0)
+        rc = gsn_h5_attr_read_string(file, GSN_ATTR_PRE_SIGNATURE, &stored);
+    gsn_h5_close(&file);
+    if (rc == GSN_OK && stored) {
+        signature_without_folder(stored, a, sizeof a);
+        signature_without_folder(wanted, b, sizeof b);
+        if (strcmp(a, b) != 0)
+            rc = gsn_error_raise(
+                GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
+                "%s: %s was made by pre from other inputs (%s), not from "
+                "this case's (%s): run 'geoscni pre %s -o %s' first, or "
+                "'geoscni run', which does",
+                r->c->path, r->model_path, a, b, r->c->path, r->outdir);
+    }
+    free(stored);
+    return rc;
+}
+
 static int run_setup(struct run *r)
 {
     const struct gsn_case *c = r->c;
@@ -589,6 +766,7 @@ static int run_setup(struct run *r)
     GSN_CHECK(access(r->model_path, R_OK) == 0, GSN_ERR_INPUT,
               "%s: not found; run 'geoscni pre %s -o OUTDIR' first",
               r->model_path, c->path);
+    GSN_CALL(check_model_source(r));
     GSN_CALL(gsn_model_read(r->model_path, &r->model));
     GSN_CALL(build_boundary_sets(r));
     struct gsn_kernel_options kernel;
@@ -625,9 +803,12 @@ static int run_setup(struct run *r)
         printf("solver: %d particles, %d integration points, %s, %.1f MB of "
                "shape functions, set up in %.2f s, %ld steps\n",
                r->model.particle_count, r->quadrature->point_count,
-               gsn_integration_name(c->integration),
+               c->stabilization == GSN_STABILIZATION_MSCNI
+                   ? "scni + mscni stabilization"
+                   : gsn_integration_name(c->integration),
                gsn_quadrature_bytes(r->quadrature) / 1e6, now_seconds() - t0,
                r->total_steps);
+    fflush(stdout); /* before the progress and any error, on stderr */
     return GSN_OK;
 }
 
@@ -643,10 +824,12 @@ static int report_quasi_static(struct run *r)
         fprintf(stderr,
                 "warning: the load was not quasi-static: the kinetic energy "
                 "reached %.3g%% of the internal energy at t = %.4g s (limit "
-                "%g%%); slow the load (a smaller velocity or a longer "
-                "time.ramp) or add damping.local\n",
+                "%g%%) in %s; a sudden failure does this; otherwise slow "
+                "the load (a smaller velocity or a longer time.ramp) or %s "
+                "damping.local\n",
                 100.0 * r->kinetic_ratio, r->kinetic_ratio_time,
-                100.0 * QUASI_STATIC_RATIO);
+                100.0 * QUASI_STATIC_RATIO, r->c->path,
+                r->c->damping_local > 0.0 ? "raise" : "add");
     else if (!r->options->quiet)
         printf("quasi-static: the kinetic energy stayed below %.3g%% of the "
                "internal energy (largest at t = %.4g s)\n",
@@ -661,6 +844,7 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
     GSN_CHECK(r, GSN_ERR_MEMORY, "out of memory");
     r->c = c;
     r->options = options;
+    r->outdir = outdir;
     r->results = H5I_INVALID_HID;
     if (options->threads > 0)
         omp_set_num_threads(options->threads);
@@ -685,7 +869,10 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
     GSN_CALL_GOTO(
         gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_COMPLETE, 0), rc,
         done);
+    struct sigaction previous[2];
+    catch_stop_signals(1, previous);
     rc = run_loop(r);
+    catch_stop_signals(0, previous);
     if (rc != GSN_OK) /* keep what was written: the frames so far */
         gsn_error_pass(rc, __FILE__, __LINE__, __func__, "run_loop(r)");
     else

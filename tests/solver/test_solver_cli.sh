@@ -3,7 +3,9 @@
 # outputs; a step above the stable one is refused with both values (exit 2);
 # forced, the run stops as unstable with exit 3 naming step, time and
 # particle, and the frames written before stay readable; solve without
-# model.h5 says to run pre first (exit 2); a case with Gauss points runs.
+# model.h5 says to run pre first (exit 2); a case with Gauss points runs;
+# a model made from other inputs and a restart with another case are
+# refused (exit 2); an interrupted run keeps a checkpoint and continues.
 . ./cli_testing.sh
 
 "$geoscni" solve cases/cli_box.yaml -o "$out/none" -q 2>"$out/err"
@@ -70,4 +72,54 @@ OMP_NUM_THREADS=2 "$geoscni" solve "$out/gauss_full.yaml" -o "$out/gauss_restart
     fail "gauss: restart failed"
 [ "$(tail -1 "$out/gauss/history.csv")" = "$(tail -1 "$out/gauss_restart/history.csv")" ] ||
     fail "gauss: the restarted run ends elsewhere than the uninterrupted one"
+# solve refuses a model.h5 that pre made from other inputs (here another
+# spacing), naming both.
+sed -e "s#^geometry: .*#geometry: $root/geometries/box.geo#" \
+    -e 's/spacing: 0.25/spacing: 0.2/' cases/cli_box.yaml >"$out/other.yaml"
+"$geoscni" solve "$out/other.yaml" -o "$out/ok" -q 2>"$out/err"
+[ $? -eq 2 ] || fail "a model from other inputs should exit 2"
+grep -q "model.h5 was made by pre from other inputs (.*spacing=0.25.*), not from this case's (.*spacing=0.2[0-9]*;" "$out/err" ||
+    fail "model source message: $(cat "$out/err")"
+# --restart with another material is refused and leaves results.h5 as it
+# was; with only time.end changed it runs (the Gauss restart above).
+sed -e "s#^geometry: .*#geometry: $root/geometries/box.geo#" \
+    -e 's/density: 2000/density: 2500/' cases/cli_box.yaml >"$out/denser.yaml"
+cp "$out/ok/results.h5" "$out/results_before.h5"
+"$geoscni" solve "$out/denser.yaml" -o "$out/ok" -q --restart 2>"$out/err"
+[ $? -eq 2 ] || fail "a restart with another case should exit 2"
+grep -q "started from another case: it had 'density: 2000' where this case has 'density: 2500'" "$out/err" ||
+    fail "restart message: $(cat "$out/err")"
+cmp -s "$out/ok/results.h5" "$out/results_before.h5" || fail "a refused restart changed results.h5"
+# SIGINT once the loop runs: a checkpoint at the step reached, exit 130
+# naming it, results.h5 kept (no .part); --restart to a time shortly after
+# gives the history of a run that was never interrupted.
+sed -e "s#^geometry: .*#geometry: $root/geometries/box.geo#" \
+    cases/cli_box_long.yaml >"$out/long.yaml"
+"$geoscni" pre "$out/long.yaml" -o "$out/int" -q || fail "pre failed"
+mkdir -p "$out/straight" && cp "$out/int/model.h5" "$out/straight/"
+"$geoscni" solve "$out/long.yaml" -o "$out/int" -q 2>"$out/err" &
+solver=$!
+i=0
+while [ ! -s "$out/int/history.csv" ] && [ $i -lt 300 ]; do
+    sleep 0.1
+    i=$((i + 1))
+done
+sleep 1
+kill -INT $solver
+wait $solver
+status=$?
+[ $status -eq 130 ] || fail "an interrupted run should exit 130, got $status"
+grep -q "interrupted at step [0-9]* of [0-9]*, t = .* s: the checkpoint of this step is written; continue with .*--restart" "$out/err" ||
+    fail "interrupt message: $(cat "$out/err")"
+[ -s "$out/int/results.h5" ] && [ ! -e "$out/int/results.h5.part" ] ||
+    fail "the interrupted run did not leave results.h5"
+stopped=$(sed -n 's/.*interrupted at step [0-9]* of [0-9]*, t = \([0-9.e+-]*\) s.*/\1/p' "$out/err")
+end=$(awk -v t="$stopped" 'BEGIN { printf "%.6g", t + 0.1 }')
+sed -e "s/end: 1000/end: $end/" "$out/long.yaml" >"$out/short.yaml"
+"$geoscni" solve "$out/short.yaml" -o "$out/int" -q --restart 2>"$out/err" ||
+    fail "restart after the interrupt failed: $(cat "$out/err")"
+"$geoscni" solve "$out/short.yaml" -o "$out/straight" -q 2>"$out/err" ||
+    fail "the uninterrupted run failed: $(cat "$out/err")"
+cmp -s "$out/int/history.csv" "$out/straight/history.csv" ||
+    fail "interrupted and continued, the history differs from the uninterrupted run's"
 finish
