@@ -212,6 +212,11 @@ static int gmsh_open_geometry(const struct gsn_case *c)
     int ierr = 0;
     gmshOptionSetNumber("General.Terminal", 0, &ierr);
     gmshOptionSetNumber("General.Verbosity", 1, &ierr);
+    /* gmsh asks on stdin before meshing a geometry whose point sizes (h,
+     * the spacing) are tiny against its size; without a popup it takes the
+     * default, continue: the estimate's mesh is coarse whatever h is, and
+     * the particle count limit refuses a huge real one */
+    gmshOptionSetNumber("General.NoPopup", 1, &ierr);
     /* one thread: the same input gives the same mesh (TOOLCHAIN.md) */
     gmshOptionSetNumber("General.NumThreads", 1, &ierr);
     gmshOptionSetNumber("Mesh.MaxNumThreads1D", 1, &ierr);

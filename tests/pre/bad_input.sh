@@ -1,6 +1,7 @@
 #!/bin/sh
 # geoscni pre on bad input (issue 3, point 6): a message and exit status 2
 # for each case, and no model.h5 (whole or partial) left in the output folder.
+# Each run has 60 s: pre must refuse, never wait.
 # Usage: bad_input.sh GEOSCNI_BINARY   (run from tests/pre)
 set -u
 geoscni=$1
@@ -12,7 +13,7 @@ failures=0
 expect() {
     name=$1 text=$2
     shift 2
-    "$geoscni" "$@" >"$work/out" 2>"$work/err"
+    timeout 60 "$geoscni" "$@" >"$work/out" 2>"$work/err"
     status=$?
     if [ "$status" -ne 2 ]; then
         echo "FAIL $name: exit status $status, expected 2"
@@ -39,6 +40,14 @@ expect missing_surface "boundary 'footing' names no physical surface" \
     pre cases/missing_surface.yaml -o "$work/out_missing_surface"
 expect too_many "more than 5000000" \
     pre cases/too_many.yaml -o "$work/out_too_many"
+# gmsh asks "Do you really want to continue?" on stdin before meshing a
+# geometry whose point sizes are tiny against it: with stdin a pipe held open
+# and never written, pre must still refuse at once
+mkfifo "$work/stdin"
+exec 3<>"$work/stdin"
+expect too_many_stdin_open "more than 5000000" \
+    pre cases/too_many.yaml -o "$work/out_too_many_stdin" <"$work/stdin"
+exec 3>&-
 expect symmetry_slanted \
     "symmetry_slanted.yaml:8: 'boundary.face.symmetry': surface 'face' is not one plane normal to x, y or z" \
     pre cases/symmetry_slanted.yaml -o "$work/out_symmetry_slanted"
