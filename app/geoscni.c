@@ -84,6 +84,7 @@ static int command_check(const struct arguments *a)
     for (int i = 0; i < a->case_count; ++i) {
         struct gsn_case c;
         GSN_CALL(gsn_case_load(a->cases[i], &c));
+        GSN_CALL(gsn_pre_check_geometry(&c));
         if (!a->quiet)
             GSN_CALL(gsn_case_write_yaml(&c, stdout));
     }
@@ -205,8 +206,10 @@ static int command_run(const struct arguments *a)
 {
     /* Every case file is checked before any work starts. */
     static struct gsn_case cases[MAX_CASES];
-    for (int i = 0; i < a->case_count; ++i)
+    for (int i = 0; i < a->case_count; ++i) {
         GSN_CALL(gsn_case_load(a->cases[i], &cases[i]));
+        GSN_CALL(gsn_pre_check_geometry(&cases[i]));
+    }
     for (int i = 0; i < a->case_count; ++i) {
         char buffer[GSN_PATH_SIZE];
         const char *outdir = outdir_for(a, a->cases[i], buffer, sizeof buffer);
@@ -265,8 +268,9 @@ static const struct command commands[] = {
      "date\n",
      command_run, 1, MAX_CASES},
     {"check", "geoscni check CASE.yaml [CASE2.yaml ...]",
-     "check case files and print their resolved parameters", "", command_check,
-     1, MAX_CASES},
+     "check case files (also against their geometries, without meshing) "
+     "and print their resolved parameters",
+     "", command_check, 1, MAX_CASES},
 };
 enum { COMMAND_COUNT = sizeof commands / sizeof commands[0] };
 

@@ -939,6 +939,11 @@ int gsn_case_find_boundary(const struct gsn_case *c, const char *name)
     return -1;
 }
 
+const char *gsn_closest_word(const char *word, const char *const words[])
+{
+    return closest_key(word, words);
+}
+
 const char *gsn_integration_name(enum gsn_integration integration)
 {
     static const char *const names[] = {"scni", "dni", "gauss"};

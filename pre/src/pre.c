@@ -199,6 +199,19 @@ static int gmsh_session_begin(struct gmsh_session *s, int argc, char **argv)
     return GSN_OK;
 }
 
+/* A session for the case: a .geo file's DefineConstant[h = ...] takes the
+ * spacing; in gmsh 4.8 only "-setnumber" does this (gmshOnelabSetNumber
+ * before gmshOpen does not reach the parser). */
+static int gmsh_session_begin_case(struct gmsh_session *s,
+                                   const struct gsn_case *c)
+{
+    char spacing[64];
+    snprintf(spacing, sizeof spacing, "%.17g", c->particle_spacing);
+    char *argv[] = {"geoscni", "-setnumber", "h", spacing, NULL};
+    GSN_CALL(gmsh_session_begin(s, 4, argv));
+    return GSN_OK;
+}
+
 static void gmsh_session_end(struct gmsh_session *s)
 {
     int ierr = 0;
@@ -610,44 +623,61 @@ done:
 }
 
 /* Every boundary of the case names a physical surface of the geometry:
- * checked right after gmsh reads it, before any meshing. */
+ * checked right after gmsh reads it, before any meshing (pre and check). */
 static int pre_check_boundaries(const struct gsn_case *c)
 {
-    int *groups = NULL, ierr = 0;
+    int *groups = NULL, ierr = 0, rc = GSN_OK;
     size_t group_count = 0;
     gmshModelGetPhysicalGroups(&groups, &group_count, 2, &ierr);
     GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot list the physical surfaces");
-    char names[1024] = "";
-    size_t used = 0;
-    int missing = -1;
-    for (int b = 0; b < c->boundary_count && missing < 0; ++b) {
-        int found = 0;
-        used = 0;
-        names[0] = '\0';
-        for (size_t g = 0; g + 1 < group_count && !found; g += 2) {
-            char *name = NULL;
-            gmshModelGetPhysicalName(2, groups[g + 1], &name, &ierr);
-            if (ierr == 0 && name) {
-                found = strcmp(name, c->boundaries[b].name) == 0;
-                if (used + 1 < sizeof names) {
-                    int w = snprintf(names + used, sizeof names - used, "%s%s",
-                                     used ? ", " : "",
-                                     name[0] ? name : "(unnamed)");
-                    used += w > 0 ? (size_t)w : 0;
-                }
-            }
-            gmshFree(name);
-        }
-        if (!found)
-            missing = b;
+    size_t count = group_count / 2;
+    char **names = calloc(count + 1, sizeof *names); /* NULL-terminated */
+    GSN_CHECK_GOTO(names != NULL, rc, GSN_ERR_MEMORY, done,
+                   "cannot allocate %zu surface names", count);
+    for (size_t g = 0; g < count; ++g) {
+        gmshModelGetPhysicalName(2, groups[2 * g + 1], &names[g], &ierr);
+        GSN_CHECK_GOTO(ierr == 0 && names[g], rc, GSN_ERR_LIBRARY, done,
+                       "cannot read the name of physical surface %d",
+                       groups[2 * g + 1]);
     }
+    for (int b = 0; b < c->boundary_count; ++b) {
+        const char *name = c->boundaries[b].name;
+        int found = 0;
+        for (size_t g = 0; g < count && !found; ++g)
+            found = strcmp(names[g], name) == 0;
+        if (found)
+            continue;
+        char list[1024] = "none", hint[GSN_H5_STRING_SIZE + 32] = "";
+        size_t used = 0;
+        for (size_t g = 0; g < count && used + 1 < sizeof list; ++g) {
+            int w =
+                snprintf(list + used, sizeof list - used, "%s%s", g ? ", " : "",
+                         names[g][0] ? names[g] : "(unnamed)");
+            used += w > 0 ? (size_t)w : 0;
+        }
+        const char *guess = gsn_closest_word(name, (const char *const *)names);
+        if (guess)
+            snprintf(hint, sizeof hint, "; did you mean '%s'?", guess);
+        GSN_CHECK_GOTO(0, rc, GSN_ERR_INPUT, done,
+                       "%s:%d: boundary '%s' names no physical surface of "
+                       "%s%s (it has: %s)",
+                       c->path, c->boundaries[b].line, name, c->geometry, hint,
+                       list);
+    }
+done:
+    for (size_t g = 0; names && g < count; ++g)
+        gmshFree(names[g]);
+    free(names);
     gmshFree(groups);
-    GSN_CHECK(missing < 0, GSN_ERR_INPUT,
-              "%s:%d: boundary '%s' names no physical surface of %s (it "
-              "has: %s)",
-              c->path, missing >= 0 ? c->boundaries[missing].line : 0,
-              missing >= 0 ? c->boundaries[missing].name : "", c->geometry,
-              used ? names : "none");
+    return rc;
+}
+
+/* What pre checks in the geometry before meshing: the boundaries' and the
+ * refinements' surfaces exist, symmetry planes are axis-aligned. */
+static int pre_check_surfaces(const struct gsn_case *c)
+{
+    GSN_CALL(pre_check_boundaries(c));
+    GSN_CALL(pre_refine_check(c));
     return GSN_OK;
 }
 
@@ -656,8 +686,7 @@ static int pre_mesh(const struct gsn_case *c,
                     double *estimate)
 {
     GSN_CALL(gmsh_open_geometry(c));
-    GSN_CALL(pre_check_boundaries(c));
-    GSN_CALL(pre_refine_check(c));
+    GSN_CALL(pre_check_surfaces(c));
     double volume = 0.0;
     GSN_CALL(estimate_volume(c, &volume));
     double h = c->particle_spacing;
@@ -745,14 +774,8 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
 
     double t0 = omp_get_wtime();
     int rc = GSN_OK;
-    /* a .geo file's DefineConstant[h = ...] takes the spacing: in gmsh 4.8
-     * only "-setnumber" does this (gmshOnelabSetNumber before gmshOpen does
-     * not reach the parser) */
-    char spacing[64];
-    snprintf(spacing, sizeof spacing, "%.17g", c->particle_spacing);
-    char *argv[] = {"geoscni", "-setnumber", "h", spacing, NULL};
     struct gmsh_session session;
-    GSN_CALL(gmsh_session_begin(&session, 4, argv));
+    GSN_CALL(gmsh_session_begin_case(&session, c));
     struct mesh mesh;
     memset(&mesh, 0, sizeof mesh);
     struct domain_result r;
@@ -818,6 +841,18 @@ done:
     gsn_model_free(&m);
     domains_result_free(&r);
     mesh_free(&mesh);
+    return rc;
+}
+
+int gsn_pre_check_geometry(const struct gsn_case *c)
+{
+    struct gmsh_session session;
+    GSN_CALL(gmsh_session_begin_case(&session, c));
+    int rc = GSN_OK;
+    GSN_CALL_GOTO(gmsh_open_geometry(c), rc, done);
+    GSN_CALL_GOTO(pre_check_surfaces(c), rc, done);
+done:
+    gmsh_session_end(&session);
     return rc;
 }
 

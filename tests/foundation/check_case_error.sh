@@ -1,11 +1,12 @@
 #!/bin/sh
 # Runs `geoscni COMMAND CASE` on a malformed case file and checks that it
 # exits with status 2 and that the first line of its error is exactly the
-# file's "# expect: " line.
+# file's "# expect: " line, where @CASES@ stands for the absolute path of
+# the cases folder (the working directory: messages name resolved geometries).
 # usage: check_case_error.sh GEOSCNI COMMAND CASE
 set -u
 geoscni=$1 command=$2 case_file=$3
-expected=$(sed -n 's/^# expect: //p' "$case_file")
+expected=$(sed -n 's/^# expect: //p' "$case_file" | sed "s|@CASES@|$(pwd -P)|g")
 if [ -z "$expected" ]; then
     echo "FAIL: $case_file has no '# expect: ' line"
     exit 1

@@ -149,6 +149,11 @@ int gsn_case_pre_signature(const struct gsn_case *c, char *out, size_t size);
 /* Index of a boundary entry by surface name, or -1. */
 int gsn_case_find_boundary(const struct gsn_case *c, const char *name);
 
+/* The word of a NULL-terminated list closest to word (edit distance at most
+ * a third of its length, or 2), or NULL: the case file's did-you-mean, for
+ * names checked elsewhere (pre: the geometry's surfaces). */
+const char *gsn_closest_word(const char *word, const char *const words[]);
+
 const char *gsn_integration_name(enum gsn_integration integration);
 
 #ifdef __cplusplus

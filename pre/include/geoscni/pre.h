@@ -33,6 +33,12 @@ struct gsn_pre_options {
 int gsn_pre_run(const struct gsn_case *c, const char *outdir,
                 const struct gsn_pre_options *options);
 
+/* What pre checks of the case against its geometry before meshing, without
+ * meshing (geoscni check): gmsh reads the geometry, which has a volume;
+ * every boundary and surface refinement names a physical surface of it
+ * (with a did-you-mean); symmetry surfaces are axis-aligned planes. */
+int gsn_pre_check_geometry(const struct gsn_case *c);
+
 /* The version of the gmsh library loaded at run time, e.g. "4.8.4". */
 int gsn_pre_gmsh_version(char *out, size_t size);
 
