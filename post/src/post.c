@@ -16,6 +16,7 @@
 #include "geoscni/model.h"
 #include "geoscni/results.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -389,6 +390,18 @@ static int post_picture_drawable(const struct gsn_frame *frame,
     return 0;
 }
 
+/* The clipped-half pictures, each in pictures/FILE_frame_NNNN.png. */
+static const struct {
+    enum gsn_vtk_picture picture;
+    const char *file, *what;
+} clips[] = {
+    {GSN_VTK_PICTURE_CLIP_UX, "clip_ux", "u_x"},
+    {GSN_VTK_PICTURE_CLIP_UY, "clip_uy", "u_y"},
+    {GSN_VTK_PICTURE_CLIP_UZ, "clip_uz", "u_z"},
+    {GSN_VTK_PICTURE_CLIP_EQUIVALENT_STRESS, "clip_equivalent_stress",
+     "equivalent stress"},
+};
+
 /* Renders the pictures of a frame: damage on the body at the chosen frames;
  * u_x, u_y, u_z and equivalent stress on the clipped half at the last. */
 static int post_frame_pictures(const struct gsn_vtk_grid *grid,
@@ -398,16 +411,6 @@ static int post_frame_pictures(const struct gsn_vtk_grid *grid,
                                const char *case_name, int *written,
                                unsigned *noted)
 {
-    static const struct {
-        enum gsn_vtk_picture picture;
-        const char *file, *what;
-    } clips[] = {
-        {GSN_VTK_PICTURE_CLIP_UX, "clip_ux", "u_x"},
-        {GSN_VTK_PICTURE_CLIP_UY, "clip_uy", "u_y"},
-        {GSN_VTK_PICTURE_CLIP_UZ, "clip_uz", "u_z"},
-        {GSN_VTK_PICTURE_CLIP_EQUIVALENT_STRESS, "clip_equivalent_stress",
-         "equivalent stress"},
-    };
     char path[GSN_PATH_SIZE], title[TITLE_SIZE];
     if (post_is_picture_frame(index, count) &&
         post_picture_drawable(frame, GSN_VTK_PICTURE_DAMAGE, noted)) {
@@ -673,6 +676,57 @@ static void post_remove_stale_frames(const char *outdir, int count)
     }
 }
 
+/* 1 if name is a picture post writes: damage_frame_NNNN.png or
+ * clip_*_frame_NNNN.png in pictures/ (plots 0), energy.png or
+ * load_settlement_*.png in plots/ (plots 1). */
+static int post_owns_picture(const char *name, int plots)
+{
+    size_t length = strlen(name);
+    if (length < 4 || strcmp(name + length - 4, ".png") != 0)
+        return 0;
+    if (plots)
+        return strcmp(name, "energy.png") == 0 ||
+               strncmp(name, "load_settlement_", 16) == 0;
+    const char *rest = NULL;
+    if (strncmp(name, "damage", 6) == 0)
+        rest = name + 6;
+    for (size_t k = 0; !rest && k < sizeof clips / sizeof clips[0]; ++k)
+        if (strncmp(name, clips[k].file, strlen(clips[k].file)) == 0)
+            rest = name + strlen(clips[k].file);
+    if (!rest || strncmp(rest, "_frame_", 7) != 0)
+        return 0;
+    rest += 7;
+    size_t digits = strspn(rest, "0123456789");
+    return digits >= 4 && strcmp(rest + digits, ".png") == 0;
+}
+
+/* Removes the pictures (plots 0) or plots (plots 1) an earlier run left in
+ * folder, so that it holds this run's only; other files stay. */
+static int post_remove_old_pictures(const char *folder, int plots)
+{
+    DIR *directory = opendir(folder);
+    if (!directory && errno == ENOENT)
+        return GSN_OK;
+    GSN_CHECK(directory != NULL, GSN_ERR_IO, "cannot read the folder %s: %s",
+              folder, strerror(errno));
+    int rc = GSN_OK;
+    for (struct dirent *entry = readdir(directory); entry && rc == GSN_OK;
+         entry = readdir(directory)) {
+        if (!post_owns_picture(entry->d_name, plots))
+            continue;
+        char path[GSN_PATH_SIZE];
+        rc = gsn_path_join(path, sizeof path, folder, entry->d_name);
+        if (rc == GSN_OK && unlink(path) != 0 && errno != ENOENT)
+            rc = gsn_error_raise(GSN_ERR_IO, __FILE__, __LINE__, __func__,
+                                 "cannot remove %s, a picture of an earlier "
+                                 "run: %s; remove it or make the folder "
+                                 "writable",
+                                 path, strerror(errno));
+    }
+    closedir(directory);
+    return rc;
+}
+
 struct post_state {
     hid_t results;
     struct post_mesh mesh;
@@ -745,8 +799,12 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
     char picture_folder[GSN_PATH_SIZE];
     GSN_CALL(gsn_path_join(picture_folder, sizeof picture_folder, outdir,
                            "pictures"));
-    if (pictures)
+    if (pictures) {
         GSN_CALL(gsn_folder_prepare(picture_folder));
+        GSN_CALL(post_remove_old_pictures(picture_folder, 0));
+        GSN_CALL(gsn_path_join(path, sizeof path, outdir, "plots"));
+        GSN_CALL(post_remove_old_pictures(path, 1));
+    }
 
     /* One frame at a time: read, write, free. */
     int picture_count = 0, plot_count = 0;

@@ -3,7 +3,8 @@
  * pictures and the plots exist with a plausible size (a blank 1000 x 700
  * PNG compresses to a few kB; a drawn one is larger). Skipped (77) when
  * neither is available, after checking post still writes the .vtu files
- * and says why it skipped the pictures. */
+ * and says why it skipped the pictures. Run again on fewer frames, post
+ * leaves only the new run's pictures and plots beside files not its own. */
 #include "synthetic.h"
 #include "testing.h"
 
@@ -12,7 +13,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-enum { FRAMES = 7, SKIPPED = 77 };
+enum { FRAMES = 7, FEWER_FRAMES = 4, SKIPPED = 77 };
 
 /* Smallest plausible PNG: above what a blank picture compresses to. */
 static const long MINIMUM_BYTES = 12000;
@@ -81,6 +82,57 @@ int main(void)
     /* The fixed entry does not move: no curve for it. */
     TEST_TRUE(file_size(folder, "plots/load_settlement_bottom.png") < 0);
     TEST_TRUE(file_size(folder, "pictures/damage_frame_0001.png") < 0);
+
+    /* again on 4 frames: the earlier run's pictures and plots go, files
+     * post does not name stay */
+    static const char *const foreign[] = {"pictures/notes.png",
+                                          "pictures/damage_frame_0006.png.txt",
+                                          "plots/energy_by_hand.png"};
+    for (size_t k = 0; k < sizeof foreign / sizeof foreign[0]; ++k) {
+        char path[GSN_PATH_SIZE];
+        TEST_INT(gsn_path_join(path, sizeof path, folder, foreign[k]), GSN_OK);
+        FILE *file = fopen(path, "w");
+        TEST_TRUE(file != NULL);
+        if (file)
+            fclose(file);
+    }
+    {
+        char path[GSN_PATH_SIZE];
+        TEST_INT(gsn_path_join(path, sizeof path, folder,
+                               "plots/load_settlement_gone.png"),
+                 GSN_OK);
+        FILE *file = fopen(path, "w");
+        TEST_TRUE(file != NULL);
+        if (file)
+            fclose(file);
+    }
+    TEST_INT(synthetic_folder_write(folder, FEWER_FRAMES, "box_case"), GSN_OK);
+    rc = gsn_post_run(folder, &options);
+    TEST_INT(rc, GSN_OK);
+    if (rc != GSN_OK)
+        gsn_error_print(stderr);
+    static const char *const kept[] = {
+        "pictures/damage_frame_0000.png",   "pictures/damage_frame_0001.png",
+        "pictures/damage_frame_0002.png",   "pictures/damage_frame_0003.png",
+        "pictures/clip_ux_frame_0003.png",  "plots/energy.png",
+        "plots/load_settlement_footing.png"};
+    for (size_t k = 0; k < sizeof kept / sizeof kept[0]; ++k)
+        TEST_TRUE(file_size(folder, kept[k]) > MINIMUM_BYTES);
+    static const char *const gone[] = {
+        "pictures/damage_frame_0005.png",
+        "pictures/damage_frame_0006.png",
+        "pictures/clip_ux_frame_0006.png",
+        "pictures/clip_uy_frame_0006.png",
+        "pictures/clip_uz_frame_0006.png",
+        "pictures/clip_equivalent_stress_frame_0006.png",
+        "plots/load_settlement_gone.png"};
+    for (size_t k = 0; k < sizeof gone / sizeof gone[0]; ++k) {
+        TEST_TRUE(file_size(folder, gone[k]) < 0);
+        if (file_size(folder, gone[k]) >= 0)
+            fprintf(stderr, "%s: left from the earlier run\n", gone[k]);
+    }
+    for (size_t k = 0; k < sizeof foreign / sizeof foreign[0]; ++k)
+        TEST_TRUE(file_size(folder, foreign[k]) == 0);
     char command[GSN_PATH_SIZE + 16];
     snprintf(command, sizeof command, "rm -rf '%s'", root);
     if (!test_failures && !getenv("GEOSCNI_KEEP_TEST_OUTPUT"))
