@@ -629,6 +629,43 @@ static int check_restart_case(struct run *r)
     return rc;
 }
 
+/* A fresh run would replace results that an interrupted run left to be
+ * continued (not complete, a checkpoint after step 0): refused unless
+ * options->start_over, since the history it needs is rewritten at once. */
+static int check_not_interrupted(const struct run *r)
+{
+    hid_t file = H5I_INVALID_HID;
+    if (r->options->start_over || access(r->results_path, F_OK) != 0 ||
+        gsn_h5_open(r->results_path, GSN_FILE_KIND_RESULTS, 0, &file) !=
+            GSN_OK) {
+        gsn_error_clear();
+        return GSN_OK;
+    }
+    int complete = 1, step = 0;
+    double time = 0.0;
+    hid_t group = H5I_INVALID_HID;
+    if (gsn_h5_attr_read_int(file, GSN_RESULTS_ATTR_COMPLETE, &complete) ==
+            GSN_OK &&
+        !complete && gsn_h5_exists(file, GSN_CHECKPOINT_GROUP)) {
+        group = H5Gopen2(file, GSN_CHECKPOINT_GROUP, H5P_DEFAULT);
+        if (group < 0 ||
+            gsn_h5_attr_read_int(group, GSN_FRAME_ATTR_STEP, &step) != GSN_OK ||
+            gsn_h5_attr_read_double(group, GSN_FRAME_ATTR_TIME, &time) !=
+                GSN_OK)
+            step = 0;
+    }
+    if (group >= 0)
+        H5Gclose(group);
+    gsn_h5_close(&file);
+    gsn_error_clear();
+    GSN_CHECK(step == 0, GSN_ERR_INPUT,
+              "%s holds a run that stopped at step %d, t = %.6g s, before its "
+              "end (interrupted or failed): continue it with --restart, or "
+              "start over with 'geoscni run --rerun' (or delete the file)",
+              r->results_path, step, time);
+    return GSN_OK;
+}
+
 /* Opens results and history for a fresh run, or for a restart from the
  * checkpoint of an earlier run's results (complete or cut short). */
 static int open_outputs(struct run *r)
@@ -636,6 +673,7 @@ static int open_outputs(struct run *r)
     struct gsn_explicit *e = r->explicit_loop;
     char *case_yaml = NULL;
     if (!r->options->restart) {
+        GSN_CALL(check_not_interrupted(r));
         GSN_CALL(gsn_case_to_yaml_string(r->c, &case_yaml));
         int rc = gsn_h5_create(r->results_temporary, GSN_FILE_KIND_RESULTS,
                                case_yaml, &r->results);

@@ -113,6 +113,10 @@ grep -q "interrupted at step [0-9]* of [0-9]*, t = .* s: the checkpoint of this 
     fail "interrupt message: $(cat "$out/err")"
 [ -s "$out/int/results.h5" ] && [ ! -e "$out/int/results.h5.part" ] ||
     fail "the interrupted run did not leave results.h5"
+"$geoscni" solve "$out/long.yaml" -o "$out/int" -q 2>"$out/err2"
+[ $? -eq 2 ] || fail "a fresh run over an interrupted one should exit 2"
+grep -q "results.h5 holds a run that stopped at step [1-9][0-9]*, t = .* s, before its end (interrupted or failed): continue it with --restart" "$out/err2" ||
+    fail "fresh-over-interrupted message: $(cat "$out/err2")"
 stopped=$(sed -n 's/.*interrupted at step [0-9]* of [0-9]*, t = \([0-9.e+-]*\) s.*/\1/p' "$out/err")
 end=$(awk -v t="$stopped" 'BEGIN { printf "%.6g", t + 0.1 }')
 sed -e "s/end: 1000/end: $end/" "$out/long.yaml" >"$out/short.yaml"

@@ -14,6 +14,7 @@ struct gsn_solve_options {
     int restart; /* continue from the checkpoint in results.h5 */
     int threads; /* 0: OpenMP's default */
     int quiet;   /* no progress line */
+    int start_over; /* replace an interrupted run's results (else refused) */
 };
 
 /* Reads OUTDIR/model.h5, runs the case, writes OUTDIR/results.h5 and
