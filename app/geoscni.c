@@ -9,6 +9,7 @@
 #include "geoscni/version.h"
 
 #include <hdf5.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,19 +24,50 @@ struct arguments {
     int force, restart, quiet, no_pictures, threads, rerun;
 };
 
+/* The options: each command takes -h and -q, and those of its mask. */
+enum option_bit {
+    OPTION_OUTPUT = 1 << 0,
+    OPTION_THREADS = 1 << 1,
+    OPTION_FORCE = 1 << 2,
+    OPTION_RESTART = 1 << 3,
+    OPTION_RERUN = 1 << 4,
+    OPTION_NO_PICTURES = 1 << 5,
+    OPTION_HELP = 1 << 6,
+    OPTION_QUIET = 1 << 7,
+    OPTION_GENERAL = OPTION_HELP | OPTION_QUIET /* every command's */
+};
+
+static const struct option {
+    const char *short_name, *long_name; /* short_name may be NULL */
+    int bit;
+    const char *value; /* what the option takes ("a folder"), NULL: none */
+} command_options[] = {
+    {"-h", "--help", OPTION_HELP, NULL},
+    {"-q", "--quiet", OPTION_QUIET, NULL},
+    {"-o", "--output", OPTION_OUTPUT, "a folder"},
+    {"-j", "--threads", OPTION_THREADS, "a number"},
+    {NULL, "--force", OPTION_FORCE, NULL},
+    {NULL, "--restart", OPTION_RESTART, NULL},
+    {NULL, "--rerun", OPTION_RERUN, NULL},
+    {NULL, "--no-pictures", OPTION_NO_PICTURES, NULL},
+};
+enum { OPTION_COUNT = sizeof command_options / sizeof command_options[0] };
+
 struct command {
     const char *name;
     const char *usage;
     const char *summary;
-    const char *options;
+    const char *options; /* help of the options of the mask but -h, -q */
     int (*run)(const struct arguments *a);
     int min_cases, max_cases;
+    const char *operand; /* "file" or "folder" */
+    int option_mask;
 };
 
-static const char general_options[] =
-    "  -h, --help       this help\n"
-    "  -q, --quiet      no progress output\n"
-    "  -j, --threads N  OpenMP threads (default: all cores)\n";
+static const char general_options[] = "  -h, --help       this help\n"
+                                      "  -q, --quiet      no progress output\n";
+
+#define THREADS_HELP "  -j, --threads N  OpenMP threads (default: all cores)\n"
 
 static const char *outdir_for(const struct arguments *a, const char *case_path,
                               char *buffer, size_t size)
@@ -245,32 +277,40 @@ static const struct command commands[] = {
     {"pre", "geoscni pre CASE.yaml [-o OUTDIR] [--force]",
      "mesh the geometry and build the nodal domains: OUTDIR/model.h5",
      "  -o, --output DIR output folder (default: the case file's name)\n"
-     "  --force          allow more than 5 million particles\n",
-     command_pre, 1, 1},
+     "  --force          allow more than 5 million particles\n" THREADS_HELP,
+     command_pre, 1, 1, "file", OPTION_OUTPUT | OPTION_FORCE | OPTION_THREADS},
     {"solve", "geoscni solve CASE.yaml [-o OUTDIR] [--restart] [--force]",
      "run the explicit dynamics: OUTDIR/results.h5 and history.csv",
      "  -o, --output DIR output folder holding model.h5\n"
-     "  --restart        continue from the checkpoint in results.h5\n"
-     "  --force          accept a time step above the stable one\n",
-     command_solve, 1, 1},
+     "  --restart        continue an interrupted solve from the checkpoint "
+     "in results.h5\n"
+     "  --force          accept a time step above the stable "
+     "one\n" THREADS_HELP,
+     command_solve, 1, 1, "file",
+     OPTION_OUTPUT | OPTION_RESTART | OPTION_FORCE | OPTION_THREADS},
     {"post", "geoscni post OUTDIR [--no-pictures]",
      "write ParaView files (CASE.pvd, vtu/), plots and pictures",
-     "  --no-pictures    skip the rendered PNG pictures\n", command_post, 1, 1},
-    {"run", "geoscni run CASE.yaml [CASE2.yaml ...] [-o OUTDIR]",
+     "  --no-pictures    skip the rendered PNG pictures\n", command_post, 1, 1,
+     "folder", OPTION_NO_PICTURES},
+    {"run", "geoscni run CASE.yaml [CASE2.yaml ...] [-o OUTDIR] [--restart]",
      "pre, solve and post for each case, each into its own folder, skipping "
      "a stage whose output is newer than its inputs and made from the same "
      "parameters",
      "  -o, --output DIR output folder (with several cases: a folder per "
      "case inside it)\n"
+     "  --restart        resume an interrupted solve from the checkpoint in "
+     "results.h5 (as for solve)\n"
      "  --force          as for pre and solve\n"
      "  --no-pictures    as for post\n"
      "  --rerun          run every stage, also those whose output is up to "
-     "date\n",
-     command_run, 1, MAX_CASES},
+     "date\n" THREADS_HELP,
+     command_run, 1, MAX_CASES, "file",
+     OPTION_OUTPUT | OPTION_RESTART | OPTION_FORCE | OPTION_NO_PICTURES |
+         OPTION_RERUN | OPTION_THREADS},
     {"check", "geoscni check CASE.yaml [CASE2.yaml ...]",
      "check case files (also against their geometries, without meshing) "
      "and print their resolved parameters",
-     "", command_check, 1, MAX_CASES},
+     "", command_check, 1, MAX_CASES, "file", 0},
 };
 enum { COMMAND_COUNT = sizeof commands / sizeof commands[0] };
 
@@ -292,6 +332,9 @@ static void print_command_help(const struct command *command)
 {
     printf("usage: %s\n\n%s\n\noptions:\n%s%s", command->usage,
            command->summary, command->options, general_options);
+    if (command->option_mask & (OPTION_OUTPUT | OPTION_THREADS))
+        printf("a value may also follow '=' or the letter: --output=DIR, "
+               "-oDIR, --threads=2, -j2\n");
 }
 
 static int print_version(void)
@@ -309,51 +352,106 @@ static int print_version(void)
     return 0;
 }
 
-static int usage_error(const char *format, const char *detail,
-                       const struct command *command)
+static int usage_error(const struct command *command, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+static int usage_error(const struct command *command, const char *format, ...)
 {
+    va_list args;
+    va_start(args, format);
     fprintf(stderr, "geoscni: ");
-    fprintf(stderr, format, detail);
-    fprintf(stderr, "\nusage: %s\n(see geoscni %s --help)\n",
-            command ? command->usage : "geoscni COMMAND [options]",
-            command ? command->name : "");
+    vfprintf(stderr, format, args);
+    va_end(args);
+    if (command)
+        fprintf(stderr, "\nusage: %s\n(see geoscni %s --help)\n",
+                command->usage, command->name);
+    else
+        fprintf(stderr, "\nusage: geoscni COMMAND [options]\n(see geoscni "
+                        "--help)\n");
     return 2;
+}
+
+/* The option arg names, or NULL; *value is what follows '=' in
+ * --name=value or the letter in -jN, NULL if nothing does. */
+static const struct option *find_option(const char *arg, const char **value)
+{
+    *value = NULL;
+    for (int k = 0; k < OPTION_COUNT; ++k) {
+        const struct option *o = &command_options[k];
+        size_t n = strlen(o->long_name);
+        if (!strncmp(arg, o->long_name, n) &&
+            (arg[n] == '\0' || arg[n] == '=')) {
+            *value = arg[n] == '=' ? arg + n + 1 : NULL;
+            return o;
+        }
+        if (o->short_name && !strncmp(arg, o->short_name, 2) &&
+            (arg[2] == '\0' || o->value)) {
+            *value = arg[2] != '\0' ? arg + 2 : NULL;
+            return o;
+        }
+    }
+    return NULL;
 }
 
 static int parse_arguments(const struct command *command, int argc, char **argv,
                            struct arguments *a, int *help)
 {
     for (int i = 2; i < argc; ++i) {
-        const char *arg = argv[i];
-        if (!strcmp(arg, "-h") || !strcmp(arg, "--help")) {
-            *help = 1;
-        } else if (!strcmp(arg, "-o") || !strcmp(arg, "--output")) {
-            if (i + 1 >= argc)
-                return usage_error("%s needs a folder", arg, command);
-            a->outdir = argv[++i];
-        } else if (!strcmp(arg, "-j") || !strcmp(arg, "--threads")) {
-            char *end = NULL;
-            if (i + 1 >= argc)
-                return usage_error("%s needs a number", arg, command);
-            a->threads = (int)strtol(argv[++i], &end, 10);
-            if (*end != '\0' || a->threads < 1)
-                return usage_error("bad thread count '%s'", argv[i], command);
-        } else if (!strcmp(arg, "--force")) {
-            a->force = 1;
-        } else if (!strcmp(arg, "--restart")) {
-            a->restart = 1;
-        } else if (!strcmp(arg, "-q") || !strcmp(arg, "--quiet")) {
-            a->quiet = 1;
-        } else if (!strcmp(arg, "--rerun")) {
-            a->rerun = 1;
-        } else if (!strcmp(arg, "--no-pictures")) {
-            a->no_pictures = 1;
-        } else if (arg[0] == '-' && arg[1] != '\0') {
-            return usage_error("unknown option '%s'", arg, command);
-        } else {
+        const char *arg = argv[i], *value = NULL;
+        if (arg[0] != '-' || arg[1] == '\0') {
             if (a->case_count >= MAX_CASES)
-                return usage_error("too many files (%s)", arg, command);
+                return usage_error(command, "too many %ss (%s)",
+                                   command->operand, arg);
             a->cases[a->case_count++] = arg;
+            continue;
+        }
+        const struct option *o = find_option(arg, &value);
+        if (!o)
+            return usage_error(command, "unknown option '%s'", arg);
+        if (!(o->bit & (command->option_mask | OPTION_GENERAL))) {
+            if (arg[1] == '-')
+                return usage_error(command, "%s does not take %s",
+                                   command->name, o->long_name);
+            return usage_error(command, "%s does not take %s (%s)",
+                               command->name, o->short_name, o->long_name);
+        }
+        if (!o->value && value)
+            return usage_error(command, "%s takes no value ('%s')",
+                               o->long_name, arg);
+        if (o->value && !value) {
+            if (i + 1 >= argc)
+                return usage_error(command, "%s needs %s", arg, o->value);
+            value = argv[++i];
+        }
+        if (o->bit == OPTION_HELP) {
+            *help = 1;
+        } else if (o->bit == OPTION_QUIET) {
+            a->quiet = 1;
+        } else if (o->bit == OPTION_OUTPUT) {
+            if (!value[0])
+                return usage_error(command, "%s needs a folder", arg);
+            a->outdir = value;
+        } else if (o->bit == OPTION_THREADS) {
+            char *end = NULL;
+            long threads = strtol(value, &end, 10);
+            if (end == value || *end != '\0' || threads < 1 ||
+                threads > 1 << 20)
+                return usage_error(command,
+                                   "bad thread count '%s': give a whole "
+                                   "number of at least 1",
+                                   value);
+            a->threads = (int)threads;
+        } else if (o->bit == OPTION_FORCE) {
+            a->force = 1;
+        } else if (o->bit == OPTION_RESTART) {
+            a->restart = 1;
+        } else if (o->bit == OPTION_RERUN) {
+            a->rerun = 1;
+        } else if (o->bit == OPTION_NO_PICTURES) {
+            a->no_pictures = 1;
         }
     }
     return 0;
@@ -377,7 +475,7 @@ int main(int argc, char **argv)
         if (!strcmp(argv[1], commands[i].name))
             command = &commands[i];
     if (!command)
-        return usage_error("unknown command '%s'", argv[1], NULL);
+        return usage_error(NULL, "unknown command '%s'", argv[1]);
 
     struct arguments a = {0};
     int help = 0;
@@ -389,9 +487,11 @@ int main(int argc, char **argv)
         return 0;
     }
     if (a.case_count < command->min_cases)
-        return usage_error("%s needs a file", command->name, command);
+        return usage_error(command, "%s needs a %s", command->name,
+                           command->operand);
     if (a.case_count > command->max_cases)
-        return usage_error("%s takes one file", command->name, command);
+        return usage_error(command, "%s takes one %s", command->name,
+                           command->operand);
 
     int rc = command->run(&a);
     if (rc != GSN_OK) {
