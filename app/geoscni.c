@@ -95,10 +95,12 @@ static int run_pre(const struct gsn_case *c, const char *outdir,
 static int run_solve(const struct gsn_case *c, const char *outdir,
                      const struct arguments *a)
 {
+    /* run --rerun starts over, also over an interrupted run's results */
     struct gsn_solve_options options = {.force = a->force,
                                         .restart = a->restart,
                                         .threads = a->threads,
-                                        .quiet = a->quiet};
+                                        .quiet = a->quiet,
+                                        .start_over = a->rerun};
     GSN_CALL(gsn_solve_run(c, outdir, &options));
     return GSN_OK;
 }
