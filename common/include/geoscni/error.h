@@ -21,7 +21,7 @@ extern "C" {
     X(GSN_ERR_IO, 2, "file could not be read or written")                      \
     X(GSN_ERR_MEMORY, 1, "out of memory")                                      \
     X(GSN_ERR_LIBRARY, 1, "an external library failed")                        \
-    X(GSN_ERR_INTERNAL, 1, "internal error (a bug in geoscni)")              \
+    X(GSN_ERR_INTERNAL, 1, "internal error (a bug in geoscni)")                \
     X(GSN_ERR_INTERRUPTED, 130, "interrupted")
 
 enum gsn_error_code {

@@ -10,10 +10,10 @@ extern "C" {
 #endif
 
 struct gsn_solve_options {
-    int force;   /* accept a time step above the stable one */
-    int restart; /* continue from the checkpoint in results.h5 */
-    int threads; /* 0: OpenMP's default */
-    int quiet;   /* no progress line */
+    int force;      /* accept a time step above the stable one */
+    int restart;    /* continue from the checkpoint in results.h5 */
+    int threads;    /* 0: OpenMP's default */
+    int quiet;      /* no progress line */
     int start_over; /* replace an interrupted run's results (else refused) */
 };
 
