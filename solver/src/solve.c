@@ -40,6 +40,8 @@
  * QUASI_STATIC_FIRST of the run without one (before, W_int is near 0). */
 #define QUASI_STATIC_RATIO 0.01
 #define QUASI_STATIC_FIRST 0.05
+/* Frames that add up to more than this many bytes are worth a warning. */
+#define LARGE_OUTPUT_BYTES 2e9
 /* Wall-clock seconds between checkpoints. */
 #define CHECKPOINT_INTERVAL 30.0
 
@@ -797,6 +799,31 @@ static int check_model_source(const struct run *r)
     return rc;
 }
 
+/* The frames the run will write (run_loop's schedule: t = 0, the steps
+ * nearest the frame times before the end, the last step) and the bytes of
+ * one in results.h5. */
+static long planned_frames(const struct run *r, double *frame_bytes)
+{
+    const struct gsn_explicit *e = r->explicit_loop;
+    const struct gsn_case *c = r->c;
+    unsigned present = c->output_fields | (1u << GSN_FRAME_DISPLACEMENT) |
+                       (1u << GSN_FRAME_DAMAGE);
+    int columns = 0;
+    for (int f = 0; f < GSN_FRAME_FIELD_COUNT; ++f)
+        if (present & (1u << f))
+            columns += gsn_frame_fields[f].columns;
+    *frame_bytes = 8.0 * columns * (double)r->model.particle_count;
+    long frames = 2, step = 0;
+    for (;;) {
+        double next = next_frame_time(c, (double)step * e->dt, e->dt);
+        if (!(next < c->time_end - 0.5 * e->dt))
+            break;
+        step = (long)ceil((next - 0.5 * e->dt) / e->dt - 1e-9);
+        frames++;
+    }
+    return frames;
+}
+
 static int run_setup(struct run *r)
 {
     const struct gsn_case *c = r->c;
@@ -846,7 +873,18 @@ static int run_setup(struct run *r)
                    : gsn_integration_name(c->integration),
                gsn_quadrature_bytes(r->quadrature) / 1e6, now_seconds() - t0,
                r->total_steps);
+    double frame_bytes = 0.0;
+    long frames = planned_frames(r, &frame_bytes);
+    if (!r->options->quiet)
+        printf("output: %ld frames of %.3g MB\n", frames, frame_bytes / 1e6);
     fflush(stdout); /* before the progress and any error, on stderr */
+    if ((double)frames * frame_bytes > LARGE_OUTPUT_BYTES)
+        fprintf(stderr,
+                "warning: %s: %ld frames of %.3g MB make %.3g GB of results "
+                "(and about as much in the .vtu files); a larger "
+                "output.every writes fewer\n",
+                c->path, frames, frame_bytes / 1e6,
+                (double)frames * frame_bytes / 1e9);
     return GSN_OK;
 }
 

@@ -20,6 +20,9 @@ done
 [ -e "$out/ok/results.h5.part" ] && fail "results.h5.part left behind"
 rows=$(wc -l <"$out/ok/history.csv")
 [ "$rows" -eq 7 ] || fail "history.csv has $rows lines, expected a header and 6 rows"
+# the frames announced before the run are the frames written
+"$geoscni" solve cases/cli_box.yaml -o "$out/ok" >"$out/log" 2>&1 || fail "solve again failed"
+grep -q "^output: 6 frames of " "$out/log" || fail "frames announced: $(grep '^output' "$out/log")"
 head -1 "$out/ok/history.csv" | grep -q "^time,step,bottom_ux,bottom_uy,bottom_uz,bottom_fx,bottom_fy,bottom_fz,top_ux" ||
     fail "history header: $(head -1 "$out/ok/history.csv")"
 
