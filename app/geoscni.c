@@ -237,6 +237,37 @@ static int run_skipped(const struct arguments *a, const char *stage,
     return 1;
 }
 
+/* One case through pre, solve and post; after a numerical failure the
+ * frames written before it are post-processed, then the failure returned. */
+static int run_case(const struct arguments *a, const struct gsn_case *c,
+                    const char *outdir)
+{
+    if (!run_skipped(a, "pre", c, outdir))
+        GSN_CALL(run_pre(c, outdir, a));
+    int rc =
+        run_skipped(a, "solve", c, outdir) ? GSN_OK : run_solve(c, outdir, a);
+    if (rc == GSN_ERR_NUMERICAL) {
+        /* Show what the run reached before it failed, then fail. */
+        fprintf(stderr, "geoscni run: ");
+        gsn_error_print(stderr);
+        fprintf(stderr, "geoscni run: post-processing the frames "
+                        "written before the failure\n");
+        gsn_error_clear();
+        if (run_post(outdir, a) != GSN_OK) {
+            gsn_error_print(stderr);
+            gsn_error_clear();
+        }
+        GSN_CHECK(0, GSN_ERR_NUMERICAL,
+                  "%s: the solver failed (see above); the frames before "
+                  "the failure are in %s",
+                  c->path, outdir);
+    }
+    GSN_CALL(rc);
+    if (!run_skipped(a, "post", c, outdir))
+        GSN_CALL(run_post(outdir, a));
+    return GSN_OK;
+}
+
 static int command_run(const struct arguments *a)
 {
     /* Every case file is checked before any work starts. */
@@ -245,34 +276,33 @@ static int command_run(const struct arguments *a)
         GSN_CALL(gsn_case_load(a->cases[i], &cases[i]));
         GSN_CALL(gsn_pre_check_geometry(&cases[i]));
     }
-    for (int i = 0; i < a->case_count; ++i) {
+    /* A case that fails does not stop the others, except an interrupt. */
+    int first_failure = GSN_OK, failed = 0, ran = 0;
+    for (int i = 0; i < a->case_count; ++i, ++ran) {
         char buffer[GSN_PATH_SIZE];
         const char *outdir = outdir_for(a, a->cases[i], buffer, sizeof buffer);
-        if (!run_skipped(a, "pre", &cases[i], outdir))
-            GSN_CALL(run_pre(&cases[i], outdir, a));
-        int rc = run_skipped(a, "solve", &cases[i], outdir)
-                     ? GSN_OK
-                     : run_solve(&cases[i], outdir, a);
-        if (rc == GSN_ERR_NUMERICAL) {
-            /* Show what the run reached before it failed, then fail. */
-            fprintf(stderr, "geoscni run: ");
-            gsn_error_print(stderr);
-            fprintf(stderr, "geoscni run: post-processing the frames "
-                            "written before the failure\n");
-            gsn_error_clear();
-            if (run_post(outdir, a) != GSN_OK) {
-                gsn_error_print(stderr);
-                gsn_error_clear();
-            }
-            GSN_CHECK(0, GSN_ERR_NUMERICAL,
-                      "%s: the solver failed (see above); the frames before "
-                      "the failure are in %s",
-                      cases[i].path, outdir);
+        int rc = run_case(a, &cases[i], outdir);
+        if (rc == GSN_OK)
+            continue;
+        if (a->case_count == 1)
+            return rc;
+        fprintf(stderr, "geoscni run: ");
+        gsn_error_print(stderr);
+        gsn_error_clear();
+        failed++;
+        if (first_failure == GSN_OK)
+            first_failure = rc;
+        if (rc == GSN_ERR_INTERRUPTED) {
+            ++ran;
+            break;
         }
-        GSN_CALL(rc);
-        if (!run_skipped(a, "post", &cases[i], outdir))
-            GSN_CALL(run_post(outdir, a));
     }
+    char not_run[64] = "";
+    if (ran < a->case_count)
+        snprintf(not_run, sizeof not_run, "; %d not run after the interrupt",
+                 a->case_count - ran);
+    GSN_CHECK(failed == 0, first_failure, "%d of %d cases failed (see above)%s",
+              failed, a->case_count, not_run);
     return GSN_OK;
 }
 

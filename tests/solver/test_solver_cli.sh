@@ -46,6 +46,14 @@ status=$?
 [ $status -eq 3 ] || fail "run of a failing case should exit 3, got $status"
 [ -s "$out/run/cli_box_big_step.pvd" ] || fail "run did not post-process the frames before the failure"
 grep -q "the frames before the failure are in" "$out/err" || fail "message: $(cat "$out/err")"
+# run on several cases: one that fails does not stop the next, and the
+# run ends with the failure's status, counting the failed cases.
+"$geoscni" run cases/cli_box.yaml cases/cli_box_big_step.yaml cases/times_box.yaml \
+    -o "$out/batch" -q --force --no-pictures 2>"$out/err"
+status=$?
+[ $status -eq 3 ] || fail "a batch with a failing case should exit 3, got $status"
+[ -s "$out/batch/times_box/times_box.pvd" ] || fail "the case after the failing one did not run"
+grep -q "1 of 3 cases failed" "$out/err" || fail "batch message: $(tail -3 "$out/err")"
 # Gauss points end to end (integration: {method: gauss, points: 2}, on the
 # tetrahedra of pre): run writes its outputs, and the top's reaction at the
 # end is that of the SCNI run above within 10% (the same problem; 4%
