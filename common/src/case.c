@@ -771,8 +771,8 @@ static int read_kinematics(struct reader *r, const yaml_node_t *root,
 static int read_output(struct reader *r, const yaml_node_t *root,
                        struct gsn_case *c)
 {
-    static const char *const keys[] = {"every", "times", "fields", "mirror",
-                                       NULL};
+    static const char *const keys[] = {"every",  "times",         "fields",
+                                       "mirror", "history_every", NULL};
     c->output_every = c->time_end / GSN_DEFAULT_FRAMES;
     yaml_node_t *node = mapping_find(r, root, "output");
     if (!node)
@@ -780,6 +780,8 @@ static int read_output(struct reader *r, const yaml_node_t *root,
     GSN_CALL(check_keys(r, node, keys, "output"));
     GSN_CALL(
         read_positive(r, node, "output", "every", "s", 0, &c->output_every));
+    GSN_CALL(read_positive(r, node, "output", "history_every", "s", 0,
+                           &c->history_every));
     GSN_CALL(read_output_economy(r, node, c));
     return GSN_OK;
 }
@@ -1030,6 +1032,8 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
     fputs("output: {", out);
     if (c->output_every > 0.0)
         fprintf(out, "every: %.17g, ", c->output_every);
+    if (c->history_every > 0.0)
+        fprintf(out, "history_every: %.17g, ", c->history_every);
     write_output_economy(c, out);
     fputs("}\n", out);
     GSN_CHECK(!ferror(out), GSN_ERR_IO, "cannot write the resolved case");

@@ -72,6 +72,7 @@ struct run {
     long total_steps;
     int frame_count;
     double next_frame_time;
+    double next_row_time; /* of the next history row between frames */
     int damage_offset, plastic_offset;
     double energy_baseline;    /* J, see ENERGY_CHECK_FIRST_STEP */
     int loading;               /* the case prescribes a nonzero velocity */
@@ -107,15 +108,15 @@ static int build_boundary_sets(struct run *r)
     return GSN_OK;
 }
 
-/* Fills r->frame from the loop's state at its current time: the fields of
- * output.fields (docs/economy.md, "Outputs"), and always the displacement
- * and damage, which the history row needs; nothing else is computed. */
-static void fill_frame(struct run *r)
+/* Fills r->frame from the loop's state at its current time: the fields
+ * wanted (bits of schema.h's frame fields: output.fields for a frame, none
+ * for a history row alone), and always the displacement and damage, which
+ * the history row needs; nothing else is computed. */
+static void fill_frame(struct run *r, unsigned wanted)
 {
     const struct gsn_explicit *e = r->explicit_loop;
     struct gsn_frame *f = &r->frame;
     int n = e->particle_count;
-    unsigned wanted = r->c->output_fields;
     int stress = (wanted & (1u << GSN_FRAME_STRESS)) != 0;
     int equivalent = (wanted & (1u << GSN_FRAME_EQUIVALENT_STRESS)) != 0;
     int plastic = (wanted & (1u << GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN)) != 0;
@@ -346,7 +347,7 @@ done:
  * last one (a restart from any checkpoint gives the same bits). */
 static int write_output(struct run *r, int final)
 {
-    fill_frame(r);
+    fill_frame(r, r->c->output_fields);
     GSN_CALL(write_history_row(r));
     GSN_CALL(gsn_results_frame_write(r->results, r->frame_count, &r->frame));
     r->frame_count++;
@@ -364,12 +365,16 @@ static int write_output(struct run *r, int final)
  * the step nearest T (docs/economy.md, "Frame times"; run_loop tests the
  * same sum). A function of the step's time alone, so a restart schedules
  * the frames of the uninterrupted run. */
+static double next_multiple(double every, double time, double dt)
+{
+    double served = time + 0.5 * dt;
+    return every > 0.0 ? (floor(served / every) + 1.0) * every : INFINITY;
+}
+
 static double next_frame_time(const struct gsn_case *c, double time, double dt)
 {
     double served = time + 0.5 * dt;
-    double next = INFINITY;
-    if (c->output_every > 0.0)
-        next = (floor(served / c->output_every) + 1.0) * c->output_every;
+    double next = next_multiple(c->output_every, time, dt);
     for (int i = 0; i < c->output_time_count; ++i)
         if (c->output_times[i] > served) {
             next = fmin(next, c->output_times[i]);
@@ -560,10 +565,19 @@ static int run_loop(struct run *r)
         int last = e->step == r->total_steps;
         int due = r->next_frame_time <= e->time + 0.5 * e->dt &&
                   r->next_frame_time < r->c->time_end - 0.5 * e->dt;
+        /* History rows between the frames at the steps nearest the
+         * multiples of output.history_every, scheduled the same way. */
+        int row_due = r->next_row_time <= e->time + 0.5 * e->dt;
         if (due || last) {
             GSN_CALL(write_output(r, last));
             r->next_frame_time = next_frame_time(r->c, e->time, e->dt);
+        } else if (row_due) {
+            fill_frame(r, 0);
+            GSN_CALL(write_history_row(r));
         }
+        if (due || last || row_due)
+            r->next_row_time =
+                next_multiple(r->c->history_every, e->time, e->dt);
         double t = now_seconds();
         if (!quiet && (t - last_print > 0.5 || last) &&
             (isatty(STDERR_FILENO) || last ||
@@ -688,6 +702,7 @@ static int open_outputs(struct run *r)
         GSN_CALL(write_history_header(r));
         GSN_CALL(write_output(r, 0)); /* the frame at t = 0 */
         r->next_frame_time = next_frame_time(r->c, e->time, e->dt);
+        r->next_row_time = next_multiple(r->c->history_every, e->time, e->dt);
         return GSN_OK;
     }
     if (access(r->results_path, F_OK) == 0)
@@ -706,6 +721,7 @@ static int open_outputs(struct run *r)
     GSN_CALL(gsn_results_frames_drop_after(r->results, (int)e->step,
                                            &r->frame_count));
     r->next_frame_time = next_frame_time(r->c, e->time, e->dt);
+    r->next_row_time = next_multiple(r->c->history_every, e->time, e->dt);
     /* Keep the history rows up to the checkpoint, drop any later ones. */
     FILE *old = fopen(r->history_path, "r");
     GSN_CHECK(old, GSN_ERR_INPUT, "%s: missing; cannot restart",

@@ -143,4 +143,18 @@ sed -e "s/end: 1000/end: $end/" "$out/long.yaml" >"$out/short.yaml"
     fail "the uninterrupted run failed: $(cat "$out/err")"
 cmp -s "$out/int/history.csv" "$out/straight/history.csv" ||
     fail "interrupted and continued, the history differs from the uninterrupted run's"
+# output.history_every: 0.1 adds rows at the steps nearest its multiples
+# (within half a step), all of them, besides the frames' (every 0.5 s)
+"$geoscni" solve "$out/short.yaml" -o "$out/straight" >"$out/straight.log" 2>&1 ||
+    fail "the uninterrupted run failed again"
+dt=$(sed -n 's/^time step: \([0-9.e+-]*\) s.*/\1/p' "$out/straight.log")
+awk -F, -v dt="$dt" -v end="$end" 'NR > 1 {
+        t = $1; rows++
+        if (t + dt / 2 < end) {
+            k = int(t / 0.1 + 0.5)
+            if (t - k * 0.1 > dt / 2 + 1e-9 || k * 0.1 - t > dt / 2 + 1e-9) bad++
+        }
+    }
+    END { exit !(bad == 0 && rows >= int(end / 0.1) + 1) }' "$out/straight/history.csv" ||
+    fail "history rows are not at the multiples of history_every (dt $dt, end $end)"
 finish
