@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <yaml.h>
 
@@ -405,6 +406,12 @@ static int read_geometry(struct reader *r, const yaml_node_t *root,
               "%s:%d: geometry file '%s' not found or not readable (looked "
               "for '%s'; the path is relative to the case file's folder)",
               r->path, node_line(node), name, c->geometry);
+    struct stat status;
+    GSN_CHECK(stat(c->geometry, &status) == 0 && !S_ISDIR(status.st_mode),
+              GSN_ERR_INPUT,
+              "%s:%d: geometry '%s' is a folder; give the gmsh file in it "
+              "(.geo, .brep, .step)",
+              r->path, node_line(node), name);
     /* Absolute, so the resolved case stored in outputs reloads anywhere. */
     char absolute[PATH_MAX];
     if (realpath(c->geometry, absolute) && strlen(absolute) < GSN_PATH_SIZE)
