@@ -871,10 +871,20 @@ static int run_setup(struct run *r)
                 r->explicit_loop, &r->model,
                 gsn_model_find_surface(&r->model, c->boundaries[b].name),
                 c->boundaries[b].traction);
+    int loaded = 0;
     for (int b = 0; b < c->boundary_count; ++b)
-        for (int k = 0; k < 3; ++k)
+        for (int k = 0; k < 3; ++k) {
             r->loading |= c->boundaries[b].has_velocity[k] &&
                           c->boundaries[b].velocity[k] != 0.0;
+            loaded |= c->boundaries[b].traction[k] != 0.0;
+        }
+    for (int k = 0; k < 3; ++k)
+        loaded |= r->loading || c->gravity[k] != 0.0;
+    if (!loaded)
+        fprintf(stderr,
+                "warning: %s: nothing loads the body (no gravity, no nonzero "
+                "velocity or traction on a boundary): it stays at rest\n",
+                c->path);
     r->damage_offset = gsn_material_state_offset(r->material->ops, "damage");
     r->plastic_offset = gsn_material_state_offset(r->material->ops,
                                                   "equivalent_plastic_strain");
