@@ -83,6 +83,12 @@ OMP_NUM_THREADS=2 "$geoscni" solve "$out/gauss_full.yaml" -o "$out/gauss_restart
     fail "gauss: restart failed"
 [ "$(tail -1 "$out/gauss/history.csv")" = "$(tail -1 "$out/gauss_restart/history.csv")" ] ||
     fail "gauss: the restarted run ends elsewhere than the uninterrupted one"
+# a case that nothing loads runs, with a warning naming it
+printf 'geometry: %s\nparticles: {spacing: 0.25}\nmaterial: {density: 2000, bulk_modulus: 1.0e7, shear_modulus: 5.0e6}\ntime: {end: 0.01, step: auto}\n' \
+    "$root/geometries/box.geo" >"$out/rest.yaml"
+"$geoscni" pre "$out/rest.yaml" -o "$out/rest" -q && "$geoscni" solve "$out/rest.yaml" -o "$out/rest" -q 2>"$out/err" ||
+    fail "the unloaded case failed: $(cat "$out/err")"
+grep -q "rest.yaml: nothing loads the body" "$out/err" || fail "no warning for an unloaded case: $(cat "$out/err")"
 # solve refuses a model.h5 that pre made from other inputs (here another
 # spacing), naming both.
 sed -e "s#^geometry: .*#geometry: $root/geometries/box.geo#" \
