@@ -499,7 +499,10 @@ static int parse_arguments(const struct command *command, int argc, char **argv,
  * again with GOMP_SPINCOUNT=3000, unless the user set the wait policy. */
 static void exec_with_short_spin(char **argv)
 {
+    /* Under valgrind /proc/self/exe is valgrind's tool, not geoscni. */
+    const char *preload = getenv("LD_PRELOAD");
     if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT") ||
+        (preload && strstr(preload, "vgpreload")) ||
         setenv("GOMP_SPINCOUNT", "3000", 1) != 0)
         return;
     execv("/proc/self/exe", argv);
