@@ -834,7 +834,13 @@ static long planned_frames(const struct run *r, double *frame_bytes)
         double next = next_frame_time(c, (double)step * e->dt, e->dt);
         if (!(next < c->time_end - 0.5 * e->dt))
             break;
-        step = (long)ceil((next - 0.5 * e->dt) / e->dt - 1e-9);
+        /* the first later step that serves it, in run_loop's arithmetic */
+        long k = (long)floor((next - 0.5 * e->dt) / e->dt);
+        if (k <= step)
+            k = step + 1;
+        while (!(next <= (double)k * e->dt + 0.5 * e->dt))
+            ++k;
+        step = k;
         frames++;
     }
     return frames;

@@ -89,6 +89,16 @@ printf 'geometry: %s\nparticles: {spacing: 0.25}\nmaterial: {density: 2000, bulk
 "$geoscni" pre "$out/rest.yaml" -o "$out/rest" -q && "$geoscni" solve "$out/rest.yaml" -o "$out/rest" -q 2>"$out/err" ||
     fail "the unloaded case failed: $(cat "$out/err")"
 grep -q "rest.yaml: nothing loads the body" "$out/err" || fail "no warning for an unloaded case: $(cat "$out/err")"
+# frames announced when a frame time sits on a half step (every 3.5 steps:
+# the announcement looped forever once)
+printf 'geometry: %s\nparticles: {spacing: 0.25}\nmaterial: {density: 2000, bulk_modulus: 1.0e7, shear_modulus: 5.0e6}\ngravity: [0, 0, -9.81]\nboundary:\n  bottom: {fix: [x, y, z]}\ntime: {end: 0.5, step: 0.001}\noutput: {every: 0.0035}\n' \
+    "$root/geometries/box.geo" >"$out/half_step.yaml"
+"$geoscni" pre "$out/half_step.yaml" -o "$out/half_step" -q || fail "pre failed"
+timeout 120 "$geoscni" solve "$out/half_step.yaml" -o "$out/half_step" >"$out/log" 2>&1 ||
+    fail "half-step frames: solve failed or hung"
+announced=$(sed -n 's/^output: \([0-9]*\) frames.*/\1/p' "$out/log")
+written=$(($(wc -l <"$out/half_step/history.csv") - 1))
+[ "$announced" = "$written" ] || fail "half-step frames: announced $announced, written $written"
 # solve refuses a model.h5 that pre made from other inputs (here another
 # spacing), naming both.
 sed -e "s#^geometry: .*#geometry: $root/geometries/box.geo#" \
