@@ -94,11 +94,11 @@ static int run_pre(const struct gsn_case *c, const char *outdir,
 }
 
 static int run_solve(const struct gsn_case *c, const char *outdir,
-                     const struct arguments *a)
+                     const struct arguments *a, int restart)
 {
     /* run --rerun starts over, also over an interrupted run's results */
     struct gsn_solve_options options = {.force = a->force,
-                                        .restart = a->restart,
+                                        .restart = restart,
                                         .threads = a->threads,
                                         .quiet = a->quiet,
                                         .start_over = a->rerun};
@@ -140,8 +140,8 @@ static int command_solve(const struct arguments *a)
     struct gsn_case c;
     char buffer[GSN_PATH_SIZE];
     GSN_CALL(gsn_case_load(a->cases[0], &c));
-    GSN_CALL(
-        run_solve(&c, outdir_for(a, a->cases[0], buffer, sizeof buffer), a));
+    GSN_CALL(run_solve(&c, outdir_for(a, a->cases[0], buffer, sizeof buffer), a,
+                       a->restart));
     return GSN_OK;
 }
 
@@ -244,8 +244,19 @@ static int run_case(const struct arguments *a, const struct gsn_case *c,
 {
     if (!run_skipped(a, "pre", c, outdir))
         GSN_CALL(run_pre(c, outdir, a));
-    int rc =
-        run_skipped(a, "solve", c, outdir) ? GSN_OK : run_solve(c, outdir, a);
+    /* --restart over several cases: those an interrupt kept from starting
+     * have no results to continue and start from the beginning */
+    char results[GSN_PATH_SIZE + 16], part[GSN_PATH_SIZE + 24];
+    snprintf(results, sizeof results, "%s/results.h5", outdir);
+    snprintf(part, sizeof part, "%s/results.h5.part", outdir);
+    int restart =
+        a->restart && (access(results, F_OK) == 0 || access(part, F_OK) == 0);
+    if (a->restart && !restart && !a->quiet)
+        printf("run: %s has no run to restart in %s: solving from the start\n",
+               c->path, outdir);
+    int rc = run_skipped(a, "solve", c, outdir)
+                 ? GSN_OK
+                 : run_solve(c, outdir, a, restart);
     if (rc == GSN_ERR_NUMERICAL) {
         /* Show what the run reached before it failed, then fail. */
         fprintf(stderr, "geoscni run: ");
@@ -290,8 +301,8 @@ static int command_run(const struct arguments *a)
         gsn_error_print(stderr);
         gsn_error_clear();
         failed++;
-        if (first_failure == GSN_OK)
-            first_failure = rc;
+        if (first_failure == GSN_OK || rc == GSN_ERR_INTERRUPTED)
+            first_failure = rc; /* an interrupt ends the batch with 130 */
         if (rc == GSN_ERR_INTERRUPTED) {
             ++ran;
             break;

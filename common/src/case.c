@@ -781,9 +781,12 @@ static int read_output(struct reader *r, const yaml_node_t *root,
     static const char *const keys[] = {"every",  "times",         "fields",
                                        "mirror", "history_every", NULL};
     c->output_every = c->time_end / GSN_DEFAULT_FRAMES;
+    c->output_every_default = 1;
     yaml_node_t *node = mapping_find(r, root, "output");
     if (!node)
         return GSN_OK;
+    c->output_every_default =
+        !mapping_find(r, node, "every") && !mapping_find(r, node, "times");
     GSN_CALL(check_keys(r, node, keys, "output"));
     GSN_CALL(
         read_positive(r, node, "output", "every", "s", 0, &c->output_every));

@@ -85,10 +85,13 @@ int gsn_results_frame_count(hid_t file, int *count)
     return GSN_OK;
 }
 
-int gsn_results_frames_drop_after(hid_t file, int step, int *count)
+int gsn_results_frames_drop_after(hid_t file, int step, int *count,
+                                  int *last_step)
 {
     GSN_CALL(gsn_results_frame_count(file, count));
     int kept = *count;
+    if (last_step)
+        *last_step = -1;
     for (; kept > 0; --kept) {
         char name[64];
         GSN_CALL(frame_group_name(kept - 1, name, sizeof name));
@@ -99,8 +102,11 @@ int gsn_results_frames_drop_after(hid_t file, int step, int *count)
         int rc = gsn_h5_attr_read_int(group, GSN_FRAME_ATTR_STEP, &frame_step);
         H5Gclose(group);
         GSN_CALL(rc);
-        if (frame_step <= step)
+        if (frame_step <= step) {
+            if (last_step)
+                *last_step = frame_step;
             break;
+        }
         GSN_CHECK(H5Ldelete(file, name, H5P_DEFAULT) >= 0, GSN_ERR_IO,
                   "cannot delete frame group '%s'", name);
     }

@@ -283,6 +283,10 @@ static int write_checkpoint(struct run *r)
                                            GSN_CHECKPOINT_ATTR_RATIO_TIME,
                                            r->kinetic_ratio_time),
                   rc, done);
+    GSN_CALL_GOTO(gsn_h5_attr_write_double(group,
+                                           GSN_CHECKPOINT_ATTR_ENERGY_BASELINE,
+                                           r->energy_baseline),
+                  rc, done);
     GSN_CALL_GOTO(
         gsn_h5_attr_write_int(group, GSN_FRAME_ATTR_STEP, (int)e->step), rc,
         done);
@@ -312,6 +316,12 @@ static int read_checkpoint(struct run *r)
     GSN_CALL_GOTO(gsn_h5_attr_read_double(group, GSN_CHECKPOINT_ATTR_RATIO_TIME,
                                           &r->kinetic_ratio_time),
                   rc, done);
+    /* (checkpoints written before 2026-12-01 lack it: 0, as they did) */
+    if (H5Aexists(group, GSN_CHECKPOINT_ATTR_ENERGY_BASELINE) > 0)
+        GSN_CALL_GOTO(
+            gsn_h5_attr_read_double(group, GSN_CHECKPOINT_ATTR_ENERGY_BASELINE,
+                                    &r->energy_baseline),
+            rc, done);
     double saved_time = 0.0;
     GSN_CALL_GOTO(
         gsn_h5_attr_read_double(group, GSN_FRAME_ATTR_TIME, &saved_time), rc,
@@ -515,7 +525,9 @@ static void request_stop(int signal_number)
 }
 
 /* Catches SIGINT and SIGTERM once (install = 1; a second one ends the
- * process at once), or gives the handlers back (install = 0). */
+ * process at once), or gives the handlers back (install = 0). A signal
+ * ignored on entry (SIGINT of a background job in a script) stays
+ * ignored. */
 static void catch_stop_signals(int install, struct sigaction previous[2])
 {
     static const int signals[2] = {SIGINT, SIGTERM};
@@ -525,10 +537,13 @@ static void catch_stop_signals(int install, struct sigaction previous[2])
     action.sa_flags = SA_RESETHAND;
     sigemptyset(&action.sa_mask);
     for (int k = 0; k < 2; ++k) {
-        if (install)
-            sigaction(signals[k], &action, &previous[k]);
-        else
+        if (install) {
+            sigaction(signals[k], NULL, &previous[k]);
+            if (previous[k].sa_handler != SIG_IGN)
+                sigaction(signals[k], &action, NULL);
+        } else {
             sigaction(signals[k], &previous[k], NULL);
+        }
     }
     stop_signal = 0;
 }
@@ -540,6 +555,8 @@ static int stop_for_signal(struct run *r)
     const struct gsn_explicit *e = r->explicit_loop;
     int signal_number = stop_signal;
     GSN_CALL(write_checkpoint(r));
+    GSN_CALL(
+        gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_INTERRUPTED, 1));
     return gsn_error_raise(
         GSN_ERR_INTERRUPTED, __FILE__, __LINE__, __func__,
         "%s at step %ld of %ld, t = %.6g s: the checkpoint of this step is "
@@ -592,93 +609,140 @@ static int run_loop(struct run *r)
     return GSN_OK;
 }
 
-/* Line `from` of a resolved case (gsn_case_write_yaml) into out, without
- * what a restart may change: the header comment (the case file's path) and
- * time.end (a restart may run further). Returns the next line, or NULL. */
-static const char *restart_case_line(const char *from, char *out, size_t size)
+/* The text after `key` at the start of a line of text, or NULL. */
+static const char *line_value(const char *text, const char *key)
 {
-    static const char time_key[] = "time: {end: ";
-    out[0] = '\0';
-    if (!from)
-        return NULL;
-    const char *newline = strchr(from, '\n');
-    size_t n = newline ? (size_t)(newline - from) : strlen(from);
-    n = n < size ? n : size - 1;
-    memcpy(out, from, n);
-    out[n] = '\0';
-    if (out[0] == '#')
-        out[0] = '\0';
-    char *rest = strstr(out, ", ");
-    if (!strncmp(out, time_key, sizeof time_key - 1) && rest)
-        memmove(out + strlen("time: {"), rest + 2, strlen(rest + 2) + 1);
-    return newline && newline[1] ? newline + 1 : NULL;
+    size_t n = strlen(key);
+    for (const char *line = text; line && *line;) {
+        if (!strncmp(line, key, n))
+            return line + n;
+        line = strchr(line, '\n');
+        line = line ? line + 1 : NULL;
+    }
+    return NULL;
+}
+
+/* A resolved case without its header comment (the case file's path). */
+static const char *without_header(const char *text)
+{
+    const char *newline = text[0] == '#' ? strchr(text, '\n') : NULL;
+    return text[0] == '#' ? (newline ? newline + 1 : "") : text;
+}
+
+static const char *file_name(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    return slash ? slash + 1 : path;
 }
 
 /* A restart continues the case its results were started with: refused when
- * anything but time.end differs (another material or step would continue
- * the old state with the new case, unnoticed). The stored case becomes this
- * one (its time.end). */
+ * it differs in anything but what a continuation may change (another
+ * material or step would continue the old state with the new case,
+ * unnoticed): time.end (a run may go further; with it output.every where
+ * that follows time.end by default) and the geometry's folder (a moved
+ * project). Nothing is written here. */
 static int check_restart_case(struct run *r)
 {
-    char *now = NULL, *then = NULL;
-    GSN_CALL(gsn_case_to_yaml_string(r->c, &now));
-    int rc = gsn_h5_attr_read_string(r->results, GSN_ATTR_CASE, &then);
-    const char *a = now, *b = then;
-    char line_now[4096], line_then[4096];
-    while (rc == GSN_OK && (a || b)) {
-        a = restart_case_line(a, line_now, sizeof line_now);
-        b = restart_case_line(b, line_then, sizeof line_then);
-        if (strcmp(line_now, line_then) != 0)
-            rc = gsn_error_raise(
-                GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
-                "%s: --restart continues the run in %s, which was started "
-                "from another case: it had '%s' where this case has '%s'; "
-                "only time.end may change for a restart: restart with the "
-                "case it was started with, or start over without --restart",
-                r->c->path, r->results_path, line_then + strspn(line_then, " "),
-                line_now + strspn(line_now, " "));
+    char *then = NULL, *now = NULL;
+    GSN_CALL(gsn_h5_attr_read_string(r->results, GSN_ATTR_CASE, &then));
+    struct gsn_case *same = malloc(sizeof *same);
+    int rc = same ? GSN_OK
+                  : gsn_error_raise(GSN_ERR_MEMORY, __FILE__, __LINE__,
+                                    __func__, "out of memory");
+    if (rc == GSN_OK) {
+        *same = *r->c;
+        const char *end = line_value(then, "time: {end: ");
+        if (end) {
+            same->time_end = strtod(end, NULL);
+            if (same->output_every_default)
+                same->output_every = same->time_end / GSN_DEFAULT_FRAMES;
+        }
+        const char *geometry = line_value(then, "geometry: '");
+        const char *close = geometry ? strchr(geometry, '\'') : NULL;
+        char stored[GSN_PATH_SIZE];
+        if (close && (size_t)(close - geometry) < sizeof stored) {
+            memcpy(stored, geometry, (size_t)(close - geometry));
+            stored[close - geometry] = '\0';
+            if (!strcmp(file_name(stored), file_name(same->geometry)))
+                memcpy(same->geometry, stored, strlen(stored) + 1);
+        }
+        rc = gsn_case_to_yaml_string(same, &now);
     }
-    if (rc == GSN_OK)
-        rc = gsn_h5_attr_write_string(r->results, GSN_ATTR_CASE, now);
+    const char *a = rc == GSN_OK ? without_header(then) : "";
+    const char *b = rc == GSN_OK ? without_header(now) : "";
+    if (rc == GSN_OK && strcmp(a, b) != 0) {
+        /* the first line that differs, each cut to 200 characters */
+        size_t at = 0, line = 0;
+        for (; a[at] && a[at] == b[at]; ++at)
+            if (a[at] == '\n')
+                line = at + 1;
+        const char *then_line = a + line + strspn(a + line, " ");
+        const char *now_line = b + line + strspn(b + line, " ");
+        int la = (int)strcspn(then_line, "\n");
+        int lb = (int)strcspn(now_line, "\n");
+        rc = gsn_error_raise(
+            GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
+            "%s: --restart continues the run in %s, which was started from "
+            "another case: it had '%.*s' where this case has '%.*s'; only "
+            "time.end may change for a restart: restart with the case it was "
+            "started with, or start over without --restart",
+            r->c->path, r->results_path, la < 200 ? la : 200, then_line,
+            lb < 200 ? lb : 200, now_line);
+    }
+    free(same);
     free(now);
     free(then);
     return rc;
 }
 
-/* A fresh run would replace results that an interrupted run left to be
- * continued (not complete, a checkpoint after step 0): refused unless
- * options->start_over, since the history it needs is rewritten at once. */
-static int check_not_interrupted(const struct run *r)
+/* The checkpoint step of a results file if it is waiting for --restart: a
+ * results.h5.part (a run killed, or running now) or a results.h5 that a
+ * signal stopped; 0 otherwise (a numerical failure may be started over). */
+static int waiting_step(const char *path, int part, double *time)
 {
-    hid_t file = H5I_INVALID_HID;
-    if (r->options->start_over || access(r->results_path, F_OK) != 0 ||
-        gsn_h5_open(r->results_path, GSN_FILE_KIND_RESULTS, 0, &file) !=
-            GSN_OK) {
+    hid_t file = H5I_INVALID_HID, group = H5I_INVALID_HID;
+    int step = 0, complete = 1, interrupted = 0;
+    if (access(path, F_OK) != 0 ||
+        gsn_h5_open(path, GSN_FILE_KIND_RESULTS, 0, &file) != GSN_OK) {
         gsn_error_clear();
-        return GSN_OK;
+        return 0;
     }
-    int complete = 1, step = 0;
-    double time = 0.0;
-    hid_t group = H5I_INVALID_HID;
-    if (gsn_h5_attr_read_int(file, GSN_RESULTS_ATTR_COMPLETE, &complete) ==
-            GSN_OK &&
-        !complete && gsn_h5_exists(file, GSN_CHECKPOINT_GROUP)) {
+    if (H5Aexists(file, GSN_RESULTS_ATTR_INTERRUPTED) > 0)
+        gsn_h5_attr_read_int(file, GSN_RESULTS_ATTR_INTERRUPTED, &interrupted);
+    gsn_h5_attr_read_int(file, GSN_RESULTS_ATTR_COMPLETE, &complete);
+    if ((part || (interrupted && !complete)) &&
+        gsn_h5_exists(file, GSN_CHECKPOINT_GROUP)) {
         group = H5Gopen2(file, GSN_CHECKPOINT_GROUP, H5P_DEFAULT);
         if (group < 0 ||
             gsn_h5_attr_read_int(group, GSN_FRAME_ATTR_STEP, &step) != GSN_OK ||
-            gsn_h5_attr_read_double(group, GSN_FRAME_ATTR_TIME, &time) !=
-                GSN_OK)
+            gsn_h5_attr_read_double(group, GSN_FRAME_ATTR_TIME, time) != GSN_OK)
             step = 0;
     }
     if (group >= 0)
         H5Gclose(group);
     gsn_h5_close(&file);
     gsn_error_clear();
+    return step;
+}
+
+/* A fresh run would replace results that wait for --restart: refused unless
+ * options->start_over, since the history they need is rewritten at once. */
+static int check_not_interrupted(const struct run *r)
+{
+    if (r->options->start_over)
+        return GSN_OK;
+    double time = 0.0;
+    const char *path = r->results_temporary;
+    int step = waiting_step(path, 1, &time);
+    if (step == 0) {
+        path = r->results_path;
+        step = waiting_step(path, 0, &time);
+    }
     GSN_CHECK(step == 0, GSN_ERR_INPUT,
-              "%s holds a run that stopped at step %d, t = %.6g s, before its "
-              "end (interrupted or failed): continue it with --restart, or "
-              "start over with 'geoscni run --rerun' (or delete the file)",
-              r->results_path, step, time);
+              "%s holds a run stopped at step %d, t = %.6g s, before its end: "
+              "continue it with --restart, or start over with 'geoscni run "
+              "--rerun' (or delete %s and solve again)",
+              path, step, time, path);
     return GSN_OK;
 }
 
@@ -705,29 +769,49 @@ static int open_outputs(struct run *r)
         r->next_row_time = next_multiple(r->c->history_every, e->time, e->dt);
         return GSN_OK;
     }
-    if (access(r->results_path, F_OK) == 0)
+    /* A results.h5.part is the newest (a run killed while writing it);
+     * else results.h5 becomes the .part it is written as. */
+    int part = access(r->results_temporary, F_OK) == 0;
+    GSN_CHECK(part || access(r->results_path, F_OK) == 0, GSN_ERR_INPUT,
+              "%s: not found: there is no run to restart in %s; solve "
+              "without --restart",
+              r->results_path, r->outdir);
+    if (!part)
         GSN_CHECK(rename(r->results_path, r->results_temporary) == 0,
                   GSN_ERR_IO, "cannot rename %s for the restart",
                   r->results_path);
     GSN_CALL(gsn_h5_open(r->results_temporary, GSN_FILE_KIND_RESULTS, 1,
                          &r->results));
+    int was_complete = 0;
+    GSN_CALL(gsn_h5_attr_read_int(r->results, GSN_RESULTS_ATTR_COMPLETE,
+                                  &was_complete));
     GSN_CALL(check_restart_case(r));
     GSN_CALL(read_checkpoint(r));
+    /* The case may have a later time.end: it is the case of the results. */
+    GSN_CALL(gsn_case_to_yaml_string(r->c, &case_yaml));
+    int written =
+        gsn_h5_attr_write_string(r->results, GSN_ATTR_CASE, case_yaml);
+    free(case_yaml);
+    GSN_CALL(written);
+    GSN_CALL(
+        gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_INTERRUPTED, 0));
     if (!r->options->quiet)
         printf("restart: from the checkpoint at step %ld of %ld, t = %.6g s\n",
                e->step, r->total_steps, e->time);
     fflush(stdout);
-    /* The checkpoint's step wrote a frame; later ones are written again. */
+    /* The checkpoint's step wrote a frame, unless a signal wrote it; later
+     * ones are written again. */
+    int last_frame_step = -1;
     GSN_CALL(gsn_results_frames_drop_after(r->results, (int)e->step,
-                                           &r->frame_count));
+                                           &r->frame_count, &last_frame_step));
     r->next_frame_time = next_frame_time(r->c, e->time, e->dt);
     r->next_row_time = next_multiple(r->c->history_every, e->time, e->dt);
     /* Keep the history rows up to the checkpoint, drop any later ones. */
+    char temporary[GSN_PATH_SIZE + 8], line[65536];
+    GSN_CALL(gsn_path_temporary(temporary, sizeof temporary, r->history_path));
     FILE *old = fopen(r->history_path, "r");
     GSN_CHECK(old, GSN_ERR_INPUT, "%s: missing; cannot restart",
               r->history_path);
-    char temporary[GSN_PATH_SIZE + 8], line[65536];
-    GSN_CALL(gsn_path_temporary(temporary, sizeof temporary, r->history_path));
     r->history = fopen(temporary, "w");
     int rc = GSN_OK;
     GSN_CHECK_GOTO(r->history, rc, GSN_ERR_IO, fail, "%s: cannot create",
@@ -743,6 +827,10 @@ static int open_outputs(struct run *r)
     fflush(r->history);
     GSN_CHECK_GOTO(rename(temporary, r->history_path) == 0, rc, GSN_ERR_IO,
                    fail, "cannot replace %s", r->history_path);
+    /* Stopped by a signal at what is now the last step: its final frame. */
+    if (e->step == r->total_steps && !was_complete &&
+        last_frame_step != (int)e->step)
+        rc = write_output(r, 1);
 fail:
     fclose(old);
     return rc;
@@ -980,6 +1068,7 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
     struct sigaction previous[2];
     catch_stop_signals(1, previous);
     rc = run_loop(r);
+    int late_signal = stop_signal; /* during the last step or its output */
     catch_stop_signals(0, previous);
     if (rc != GSN_OK) /* keep what was written: the frames so far */
         gsn_error_pass(rc, __FILE__, __LINE__, __func__, "run_loop(r)");
@@ -987,6 +1076,12 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
         rc = gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_COMPLETE, 1);
     if (rc == GSN_OK)
         rc = report_quasi_static(r);
+    if (rc == GSN_OK && late_signal) /* complete, but the user asked to stop */
+        rc = gsn_error_raise(
+            GSN_ERR_INTERRUPTED, __FILE__, __LINE__, __func__,
+            "%s after the last step: the run in %s is "
+            "complete",
+            late_signal == SIGTERM ? "terminated" : "interrupted", r->outdir);
 done:
     if (r->results >= 0) {
         gsn_h5_close(&r->results);

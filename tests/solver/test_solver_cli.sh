@@ -117,7 +117,29 @@ cp "$out/ok/results.h5" "$out/results_before.h5"
 grep -q "started from another case: it had 'density: 2000' where this case has 'density: 2500'" "$out/err" ||
     fail "restart message: $(cat "$out/err")"
 cmp -s "$out/ok/results.h5" "$out/results_before.h5" || fail "a refused restart changed results.h5"
-# SIGINT once the loop runs: a checkpoint at the step reached, exit 130
+# a restart to a time.end before the checkpoint is refused, results.h5 as
+# it was (the stored case once became the refused one's)
+sed -e "s#^geometry: .*#geometry: $root/geometries/box.geo#" \
+    -e 's/end: 0.1,/end: 0.05,/' cases/cli_box.yaml >"$out/earlier.yaml"
+"$geoscni" solve "$out/earlier.yaml" -o "$out/ok" -q --restart 2>"$out/err"
+[ $? -eq 2 ] || fail "a restart before the checkpoint should exit 2"
+grep -q "after this case's time.end" "$out/err" || fail "earlier end message: $(cat "$out/err")"
+cmp -s "$out/ok/results.h5" "$out/results_before.h5" || fail "a refused restart (earlier end) changed results.h5"
+# output.every left to follow time.end: a finished run continues further
+sed -e "s#^geometry: .*#geometry: $root/geometries/box.geo#" -e '/^output:/d' \
+    -e 's/end: 0.1,/end: 0.06,/' cases/cli_box.yaml >"$out/default_every.yaml"
+sed -e 's/end: 0.06,/end: 0.1,/' "$out/default_every.yaml" >"$out/default_every_longer.yaml"
+mkdir -p "$out/further" && cp "$out/ok/model.h5" "$out/further/"
+"$geoscni" solve "$out/default_every.yaml" -o "$out/further" -q 2>/dev/null || fail "solve to 0.06 failed"
+"$geoscni" solve "$out/default_every_longer.yaml" -o "$out/further" -q --restart 2>"$out/err" ||
+    fail "a longer time.end with the default output.every was refused: $(cat "$out/err")"
+# run --restart over cases that never started: they solve from the start
+"$geoscni" run cases/cli_box.yaml cases/times_box.yaml -o "$out/batch2" --restart --no-pictures >"$out/log" 2>&1 ||
+    fail "run --restart without results failed: $(tail -3 "$out/log")"
+grep -q "has no run to restart in .*: solving from the start" "$out/log" || fail "run --restart message: $(head -3 "$out/log")"
+[ -s "$out/batch2/times_box/times_box.pvd" ] || fail "run --restart did not run the second case"
+# SIGTERM once the loop runs (SIGINT is ignored by a script's background
+# job, and solve leaves it so): a checkpoint at the step reached, exit 130
 # naming it, results.h5 kept (no .part); --restart to a time shortly after
 # gives the history of a run that was never interrupted.
 sed -e "s#^geometry: .*#geometry: $root/geometries/box.geo#" \
@@ -138,19 +160,19 @@ if [ -z "${OMP_WAIT_POLICY:-}${GOMP_SPINCOUNT:-}" ] && [ -r /proc/$solver/enviro
         fail "the solver does not run with GOMP_SPINCOUNT=3000"
 fi
 sleep 1
-kill -INT $solver
+kill -TERM $solver
 wait $solver
 status=$?
 [ $status -eq 130 ] || fail "an interrupted run should exit 130, got $status"
-grep -q "interrupted at step [0-9]* of [0-9]*, t = .* s: the checkpoint of this step is written; continue with .*--restart" "$out/err" ||
+grep -q "terminated at step [0-9]* of [0-9]*, t = .* s: the checkpoint of this step is written; continue with .*--restart" "$out/err" ||
     fail "interrupt message: $(cat "$out/err")"
 [ -s "$out/int/results.h5" ] && [ ! -e "$out/int/results.h5.part" ] ||
     fail "the interrupted run did not leave results.h5"
 "$geoscni" solve "$out/long.yaml" -o "$out/int" -q 2>"$out/err2"
 [ $? -eq 2 ] || fail "a fresh run over an interrupted one should exit 2"
-grep -q "results.h5 holds a run that stopped at step [1-9][0-9]*, t = .* s, before its end (interrupted or failed): continue it with --restart" "$out/err2" ||
+grep -q "results.h5 holds a run stopped at step [1-9][0-9]*, t = .* s, before its end: continue it with --restart" "$out/err2" ||
     fail "fresh-over-interrupted message: $(cat "$out/err2")"
-stopped=$(sed -n 's/.*interrupted at step [0-9]* of [0-9]*, t = \([0-9.e+-]*\) s.*/\1/p' "$out/err")
+stopped=$(sed -n 's/.*terminated at step [0-9]* of [0-9]*, t = \([0-9.e+-]*\) s.*/\1/p' "$out/err")
 end=$(awk -v t="$stopped" 'BEGIN { printf "%.6g", t + 0.1 }')
 sed -e "s/end: 1000/end: $end/" "$out/long.yaml" >"$out/short.yaml"
 "$geoscni" solve "$out/short.yaml" -o "$out/int" -q --restart 2>"$out/err" ||

@@ -114,8 +114,10 @@ struct gsn_case {
     int small_strain;        /* kinematics: small (no geometry update) */
     double output_every;     /* s between frames; 0: none (output.times
                                 alone) */
-    double history_every;    /* s between history rows besides the frames'
-                                (0: at the frames only) */
+    int output_every_default; /* output.every and .times not given: every
+                                 is time_end / GSN_DEFAULT_FRAMES */
+    double history_every;     /* s between history rows besides the frames'
+                                 (0: at the frames only) */
     /* economy (docs/economy.md) */
     int refinement_count;
     struct gsn_refinement refinements[GSN_MAX_REFINEMENTS];

@@ -38,8 +38,10 @@ int gsn_results_frame_count(hid_t file, int *count);
 
 /* Deletes the frames written after the given step and sets *count to the
  * frames left: a restart from a checkpoint at that step writes them again
- * (a run stopped between checkpoints leaves such frames behind). */
-int gsn_results_frames_drop_after(hid_t file, int step, int *count);
+ * (a run stopped between checkpoints leaves such frames behind); *last_step
+ * (may be NULL) is the step of the last frame left, -1 if none. */
+int gsn_results_frames_drop_after(hid_t file, int step, int *count,
+                                  int *last_step);
 
 /* Reads frame index into a frame allocated for the file's particle count;
  * frame->present says which fields the file holds (the others are zeroed). */

@@ -103,6 +103,10 @@ struct gsn_dataset_info {
  * quasi-static check); also on the checkpoint, with the time it occurred. */
 #define GSN_RESULTS_ATTR_KINETIC_RATIO "kinetic_ratio_max"
 #define GSN_CHECKPOINT_ATTR_RATIO_TIME "kinetic_ratio_time"
+/* 1: a signal stopped the run (it waits for --restart; results.h5) */
+#define GSN_RESULTS_ATTR_INTERRUPTED "interrupted"
+/* The energy balance the stability check compares with (checkpoint) */
+#define GSN_CHECKPOINT_ATTR_ENERGY_BASELINE "energy_baseline"
 
 /* The restart checkpoint of results.h5: the group GSN_CHECKPOINT_GROUP with
  * attributes "time" (s) and "step", holding the whole state of the explicit
