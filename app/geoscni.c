@@ -8,7 +8,9 @@
 #include "geoscni/solver.h"
 #include "geoscni/version.h"
 
+#include <ctype.h>
 #include <hdf5.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -114,15 +116,66 @@ static int run_post(const char *outdir, const struct arguments *a)
     return GSN_OK;
 }
 
+/* The resolved case as check shows it: every number outside quotes in the
+ * shortest form that reads back to the same double (0.7, not
+ * 0.69999999999999996; the files between stages keep all 17 digits). */
+static void print_readable(const char *text, FILE *out)
+{
+    int quoted = 0;
+    for (const char *p = text; *p;) {
+        int sign = (*p == '-' || *p == '+') && isdigit((unsigned char)p[1]);
+        int number = !quoted && (isdigit((unsigned char)*p) || sign) &&
+                     (p == text || (!isalnum((unsigned char)p[-1]) &&
+                                    p[-1] != '_' && p[-1] != '.'));
+        char *end = (char *)p;
+        double value = number ? strtod(p, &end) : 0.0;
+        if (end > p) {
+            char shortest[32];
+            for (int digits = 1; digits <= 17; ++digits) {
+                if (value == floor(value) && fabs(value) < 1e15)
+                    snprintf(shortest, sizeof shortest, "%.0f", value);
+                else
+                    snprintf(shortest, sizeof shortest, "%.*g", digits, value);
+                if (strtod(shortest, NULL) == value)
+                    break;
+            }
+            fputs(shortest, out);
+            p = end;
+            continue;
+        }
+        quoted ^= *p == '\'';
+        fputc(*p++, out);
+    }
+}
+
+/* Checks every case file (each error printed, the first one returned) and
+ * prints the resolved parameters of the good ones. */
 static int command_check(const struct arguments *a)
 {
+    int first_failure = GSN_OK;
     for (int i = 0; i < a->case_count; ++i) {
         struct gsn_case c;
-        GSN_CALL(gsn_case_load(a->cases[i], &c));
-        GSN_CALL(gsn_pre_check_geometry(&c));
-        if (!a->quiet)
-            GSN_CALL(gsn_case_write_yaml(&c, stdout));
+        char *text = NULL;
+        int rc = gsn_case_load(a->cases[i], &c);
+        if (rc == GSN_OK)
+            rc = gsn_pre_check_geometry(&c);
+        if (rc == GSN_OK && !a->quiet)
+            rc = gsn_case_to_yaml_string(&c, &text);
+        if (text)
+            print_readable(text, stdout);
+        free(text);
+        if (rc != GSN_OK && a->case_count > 1) {
+            fprintf(stderr, "geoscni check: ");
+            gsn_error_print(stderr);
+            gsn_error_clear();
+        }
+        if (first_failure == GSN_OK)
+            first_failure = rc;
+        if (rc != GSN_OK && a->case_count == 1)
+            return rc;
     }
+    GSN_CHECK(first_failure == GSN_OK, first_failure,
+              "some case files have errors (see above)");
     return GSN_OK;
 }
 

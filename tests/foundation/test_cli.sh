@@ -1,7 +1,8 @@
 #!/bin/sh
 # The geoscni program: help and version exit 0, usage errors exit 2 and say
 # what is allowed, every subcommand has --help, option values also after '='
-# or the letter, options a command does not use are refused.
+# or the letter, options a command does not use are refused; check shows
+# numbers in their shortest exact form and checks every file it is given.
 set -u
 geoscni=$1
 failures=0
@@ -80,6 +81,12 @@ expect_status 2 "$geoscni" pre no_such_case.yaml --restart
 expect_output "pre does not take --restart"
 expect_status 0 "$geoscni" check valid.yaml minimal.yaml
 expect_output "bulk_modulus: 27400000"
+# numbers shown in their shortest exact form (0.07, not 0.070000000000000007)
+expect_output "alpha: 0.07, R: 190000"
+# every file is checked: the bad one named, the good ones printed, exit 2
+expect_status 2 "$geoscni" check valid.yaml bad/geometry_folder.yaml minimal.yaml
+expect_output "geometry_folder.yaml:3: geometry '..' is a folder"
+expect_output "resolved parameters of minimal.yaml"
 expect_status 2 "$geoscni" check no_such_case.yaml
 expect_output "cannot open the case file"
 rm -f /tmp/geoscni-cli-out.$$
