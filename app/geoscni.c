@@ -2,6 +2,7 @@
  * check; exit status 0 ok, 2 bad input, 3 numerical failure (DESIGN.md). */
 #include "geoscni/case.h"
 #include "geoscni/error.h"
+#include "geoscni/files.h"
 #include "geoscni/h5io.h"
 #include "geoscni/post.h"
 #include "geoscni/pre.h"
@@ -299,9 +300,9 @@ static int run_case(const struct arguments *a, const struct gsn_case *c,
         GSN_CALL(run_pre(c, outdir, a));
     /* --restart over several cases: those an interrupt kept from starting
      * have no results to continue and start from the beginning */
-    char results[GSN_PATH_SIZE + 16], part[GSN_PATH_SIZE + 24];
-    snprintf(results, sizeof results, "%s/results.h5", outdir);
-    snprintf(part, sizeof part, "%s/results.h5.part", outdir);
+    char results[GSN_PATH_SIZE], part[GSN_PATH_SIZE];
+    GSN_CALL(gsn_path_join(results, sizeof results, outdir, "results.h5"));
+    GSN_CALL(gsn_path_temporary(part, sizeof part, results));
     int restart =
         a->restart && (access(results, F_OK) == 0 || access(part, F_OK) == 0);
     if (a->restart && !restart && !a->quiet)

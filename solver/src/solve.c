@@ -369,28 +369,43 @@ static int write_output(struct run *r, int final)
     return GSN_OK;
 }
 
-/* The first frame time of the case, a multiple of output.every or an entry
- * of output.times, that the step at `time` has not served; INFINITY if none
- * is left. A frame time T is served by the first step with T <= t + dt/2,
- * the step nearest T (docs/economy.md, "Frame times"; run_loop tests the
- * same sum). A function of the step's time alone, so a restart schedules
- * the frames of the uninterrupted run. */
+/* Whether the step at `time` serves a frame or row time T: the first step
+ * with T <= t + dt/2, the step nearest T (docs/economy.md, "Frame
+ * times"). */
+static int time_served(double target, double time, double dt)
+{
+    return target <= time + 0.5 * dt;
+}
+
+/* The first multiple of `every` that the step at `time` has not served;
+ * INFINITY if every is 0. */
 static double next_multiple(double every, double time, double dt)
 {
     double served = time + 0.5 * dt;
     return every > 0.0 ? (floor(served / every) + 1.0) * every : INFINITY;
 }
 
+/* The first frame time of the case, a multiple of output.every or an entry
+ * of output.times, that the step at `time` has not served; INFINITY if none
+ * is left. A function of the step's time alone, so a restart schedules the
+ * frames of the uninterrupted run. */
 static double next_frame_time(const struct gsn_case *c, double time, double dt)
 {
-    double served = time + 0.5 * dt;
     double next = next_multiple(c->output_every, time, dt);
     for (int i = 0; i < c->output_time_count; ++i)
-        if (c->output_times[i] > served) {
+        if (!time_served(c->output_times[i], time, dt)) {
             next = fmin(next, c->output_times[i]);
             break;
         }
     return next;
+}
+
+/* The next frame and history row after the loop's present step. */
+static void schedule_outputs(struct run *r)
+{
+    const struct gsn_explicit *e = r->explicit_loop;
+    r->next_frame_time = next_frame_time(r->c, e->time, e->dt);
+    r->next_row_time = next_multiple(r->c->history_every, e->time, e->dt);
 }
 
 /* The time step: auto (safety x stable) or the case's, refused above the
@@ -548,6 +563,11 @@ static void catch_stop_signals(int install, struct sigaction previous[2])
     stop_signal = 0;
 }
 
+static const char *stopped_by(int signal_number)
+{
+    return signal_number == SIGTERM ? "terminated" : "interrupted";
+}
+
 /* After a stop signal: the checkpoint of the step just done, so that
  * --restart continues from it (the frames so far are kept as they are). */
 static int stop_for_signal(struct run *r)
@@ -562,8 +582,8 @@ static int stop_for_signal(struct run *r)
         "%s at step %ld of %ld, t = %.6g s: the checkpoint of this step is "
         "written; continue with 'geoscni solve %s -o %s --restart' (or run "
         "--restart)",
-        signal_number == SIGTERM ? "terminated" : "interrupted", e->step,
-        r->total_steps, e->time, r->c->path, r->outdir);
+        stopped_by(signal_number), e->step, r->total_steps, e->time, r->c->path,
+        r->outdir);
 }
 
 static int run_loop(struct run *r)
@@ -580,11 +600,11 @@ static int run_loop(struct run *r)
         /* Frames at the steps nearest the frame times before the end, and
          * one at the last step (not also one a step before it). */
         int last = e->step == r->total_steps;
-        int due = r->next_frame_time <= e->time + 0.5 * e->dt &&
+        int due = time_served(r->next_frame_time, e->time, e->dt) &&
                   r->next_frame_time < r->c->time_end - 0.5 * e->dt;
         /* History rows between the frames at the steps nearest the
          * multiples of output.history_every, scheduled the same way. */
-        int row_due = r->next_row_time <= e->time + 0.5 * e->dt;
+        int row_due = time_served(r->next_row_time, e->time, e->dt);
         if (due || last) {
             GSN_CALL(write_output(r, last));
             r->next_frame_time = next_frame_time(r->c, e->time, e->dt);
@@ -765,8 +785,7 @@ static int open_outputs(struct run *r)
         GSN_CHECK(r->history, GSN_ERR_IO, "%s: cannot create", r->history_path);
         GSN_CALL(write_history_header(r));
         GSN_CALL(write_output(r, 0)); /* the frame at t = 0 */
-        r->next_frame_time = next_frame_time(r->c, e->time, e->dt);
-        r->next_row_time = next_multiple(r->c->history_every, e->time, e->dt);
+        schedule_outputs(r);
         return GSN_OK;
     }
     /* A results.h5.part is the newest (a run killed while writing it);
@@ -804,8 +823,7 @@ static int open_outputs(struct run *r)
     int last_frame_step = -1;
     GSN_CALL(gsn_results_frames_drop_after(r->results, (int)e->step,
                                            &r->frame_count, &last_frame_step));
-    r->next_frame_time = next_frame_time(r->c, e->time, e->dt);
-    r->next_row_time = next_multiple(r->c->history_every, e->time, e->dt);
+    schedule_outputs(r);
     /* Keep the history rows up to the checkpoint, drop any later ones. */
     char temporary[GSN_PATH_SIZE + 8], line[65536];
     GSN_CALL(gsn_path_temporary(temporary, sizeof temporary, r->history_path));
@@ -926,7 +944,7 @@ static long planned_frames(const struct run *r, double *frame_bytes)
         long k = (long)floor((next - 0.5 * e->dt) / e->dt);
         if (k <= step)
             k = step + 1;
-        while (!(next <= (double)k * e->dt + 0.5 * e->dt))
+        while (!time_served(next, (double)k * e->dt, e->dt))
             ++k;
         step = k;
         frames++;
@@ -965,16 +983,16 @@ static int run_setup(struct run *r)
                 r->explicit_loop, &r->model,
                 gsn_model_find_surface(&r->model, c->boundaries[b].name),
                 c->boundaries[b].traction);
-    int loaded = 0;
+    int traction = 0;
     for (int b = 0; b < c->boundary_count; ++b)
         for (int k = 0; k < 3; ++k) {
             r->loading |= c->boundaries[b].has_velocity[k] &&
                           c->boundaries[b].velocity[k] != 0.0;
-            loaded |= c->boundaries[b].traction[k] != 0.0;
+            traction |= c->boundaries[b].traction[k] != 0.0;
         }
-    for (int k = 0; k < 3; ++k)
-        loaded |= r->loading || c->gravity[k] != 0.0;
-    if (!loaded)
+    int gravity =
+        c->gravity[0] != 0.0 || c->gravity[1] != 0.0 || c->gravity[2] != 0.0;
+    if (!r->loading && !traction && !gravity)
         fprintf(stderr,
                 "warning: %s: nothing loads the body (no gravity, no nonzero "
                 "velocity or traction on a boundary): it stays at rest\n",
@@ -1077,11 +1095,10 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
     if (rc == GSN_OK)
         rc = report_quasi_static(r);
     if (rc == GSN_OK && late_signal) /* complete, but the user asked to stop */
-        rc = gsn_error_raise(
-            GSN_ERR_INTERRUPTED, __FILE__, __LINE__, __func__,
-            "%s after the last step: the run in %s is "
-            "complete",
-            late_signal == SIGTERM ? "terminated" : "interrupted", r->outdir);
+        rc = gsn_error_raise(GSN_ERR_INTERRUPTED, __FILE__, __LINE__, __func__,
+                             "%s after the last step: the run in %s is "
+                             "complete",
+                             stopped_by(late_signal), r->outdir);
 done:
     if (r->results >= 0) {
         gsn_h5_close(&r->results);
