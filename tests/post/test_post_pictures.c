@@ -25,6 +25,17 @@ static int program_on_path(const char *name)
     return system(command) == 0;
 }
 
+/* An empty file folder/name. */
+static void touch(const char *folder, const char *name)
+{
+    char path[GSN_PATH_SIZE];
+    TEST_INT(gsn_path_join(path, sizeof path, folder, name), GSN_OK);
+    FILE *file = fopen(path, "w");
+    TEST_TRUE(file != NULL);
+    if (file)
+        fclose(file);
+}
+
 static long file_size(const char *folder, const char *name)
 {
     char path[GSN_PATH_SIZE];
@@ -88,24 +99,9 @@ int main(void)
     static const char *const foreign[] = {"pictures/notes.png",
                                           "pictures/damage_frame_0006.png.txt",
                                           "plots/energy_by_hand.png"};
-    for (size_t k = 0; k < sizeof foreign / sizeof foreign[0]; ++k) {
-        char path[GSN_PATH_SIZE];
-        TEST_INT(gsn_path_join(path, sizeof path, folder, foreign[k]), GSN_OK);
-        FILE *file = fopen(path, "w");
-        TEST_TRUE(file != NULL);
-        if (file)
-            fclose(file);
-    }
-    {
-        char path[GSN_PATH_SIZE];
-        TEST_INT(gsn_path_join(path, sizeof path, folder,
-                               "plots/load_settlement_gone.png"),
-                 GSN_OK);
-        FILE *file = fopen(path, "w");
-        TEST_TRUE(file != NULL);
-        if (file)
-            fclose(file);
-    }
+    for (size_t k = 0; k < sizeof foreign / sizeof foreign[0]; ++k)
+        touch(folder, foreign[k]);
+    touch(folder, "plots/load_settlement_gone.png");
     TEST_INT(synthetic_folder_write(folder, FEWER_FRAMES, "box_case"), GSN_OK);
     rc = gsn_post_run(folder, &options);
     TEST_INT(rc, GSN_OK);
