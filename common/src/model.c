@@ -43,7 +43,7 @@ int gsn_model_allocate(struct gsn_model *m, int particle_count,
         (void **)&m->facet_point_offset, (void **)&m->facet_point,
         (void **)&m->facet_weight,       (void **)&m->surface_name,
         (void **)&m->surface_tag,        (void **)&m->surface_area,
-        (void **)&m->tetrahedra};
+        (void **)&m->tetrahedra,         (void **)&m->tetrahedron_face};
     const size_t counts[] = {3 * n,
                              n,
                              3 * n,
@@ -60,13 +60,14 @@ int gsn_model_allocate(struct gsn_model *m, int particle_count,
                              (size_t)surface_count,
                              (size_t)surface_count,
                              (size_t)surface_count,
+                             4 * (size_t)tetrahedron_count,
                              4 * (size_t)tetrahedron_count};
     const size_t sizes[] = {sizeof(double), sizeof(double),     sizeof(double),
                             sizeof(int),    sizeof(int),        sizeof(int),
                             sizeof(int),    sizeof(int),        sizeof(double),
                             sizeof(double), sizeof(int),        sizeof(double),
                             sizeof(double), GSN_H5_STRING_SIZE, sizeof(int),
-                            sizeof(double), sizeof(int)};
+                            sizeof(double), sizeof(int),        sizeof(int)};
     for (size_t i = 0; i < sizeof counts / sizeof counts[0]; ++i)
         GSN_CALL_GOTO(model_calloc(arrays[i], counts[i], sizes[i]), rc, fail);
     return GSN_OK;
@@ -94,6 +95,7 @@ void gsn_model_free(struct gsn_model *m)
     free(m->surface_tag);
     free(m->surface_area);
     free(m->tetrahedra);
+    free(m->tetrahedron_face);
     memset(m, 0, sizeof *m);
 }
 
@@ -122,7 +124,8 @@ static void model_arrays(const struct gsn_model *m, void *data[], size_t rows[])
         [GSN_MODEL_SURFACE_NAME] = m->surface_name,
         [GSN_MODEL_SURFACE_TAG] = m->surface_tag,
         [GSN_MODEL_SURFACE_AREA] = m->surface_area,
-        [GSN_MODEL_TETRAHEDRA] = m->tetrahedra};
+        [GSN_MODEL_TETRAHEDRA] = m->tetrahedra,
+        [GSN_MODEL_TETRAHEDRON_FACE] = m->tetrahedron_face};
     size_t r[GSN_MODEL_DATASET_COUNT] = {
         [GSN_MODEL_POSITION] = n,
         [GSN_MODEL_VOLUME] = n,
@@ -140,7 +143,8 @@ static void model_arrays(const struct gsn_model *m, void *data[], size_t rows[])
         [GSN_MODEL_SURFACE_NAME] = (size_t)m->surface_count,
         [GSN_MODEL_SURFACE_TAG] = (size_t)m->surface_count,
         [GSN_MODEL_SURFACE_AREA] = (size_t)m->surface_count,
-        [GSN_MODEL_TETRAHEDRA] = (size_t)m->tetrahedron_count};
+        [GSN_MODEL_TETRAHEDRA] = (size_t)m->tetrahedron_count,
+        [GSN_MODEL_TETRAHEDRON_FACE] = (size_t)m->tetrahedron_count};
     memcpy(data, d, sizeof d);
     memcpy(rows, r, sizeof r);
 }
@@ -257,6 +261,8 @@ static int model_read_file(hid_t file, const char *path, struct gsn_model *m)
                            (int)surfaces));
     GSN_CALL(check_indices(path, "mesh/tetrahedra", m->tetrahedra, 4 * tets, 0,
                            (int)n));
+    GSN_CALL(check_indices(path, "mesh/tetrahedron_face", m->tetrahedron_face,
+                           4 * tets, GSN_MODEL_FACE_UNTAGGED, (int)surfaces));
     for (size_t s = 0; s < surfaces; ++s)
         m->surface_name[s][GSN_H5_STRING_SIZE - 1] = '\0';
     return GSN_OK;

@@ -1,6 +1,6 @@
 /* Voronoi cells of arbitrary points clipped to an axis-aligned box: the
  * nodal domains of test models that need no gmsh (lattices, random sets). */
-#include "domains.h"
+#include "geoscni/cells.h"
 #include "geoscni/error.h"
 #include "geoscni/pre.h"
 
@@ -27,10 +27,10 @@ static int box_faces_touched(const double x[3], const double lo[3],
 
 int gsn_pre_domains_box_ex(const double *points, int n, const double lo[3],
                            const double hi[3], int facet_points, int threads,
-                           struct gsn_model *m, struct gsn_pre_check *report)
+                           struct gsn_model *m, struct gsn_cells_report *report)
 {
     memset(m, 0, sizeof *m);
-    struct domain_input in;
+    struct gsn_cells_input in;
     memset(&in, 0, sizeof in);
     in.particle_count = n;
     in.position = points;
@@ -40,10 +40,10 @@ int gsn_pre_domains_box_ex(const double *points, int n, const double lo[3],
         in.box_label[s] = -1 - s; /* surface s */
     in.facet_points = facet_points;
     in.threads = threads;
-    struct domain_result r;
-    struct gsn_pre_check check;
+    struct gsn_cells_result r;
+    struct gsn_cells_report check;
     memset(&check, 0, sizeof check);
-    GSN_CALL(domains_build(&in, &r));
+    GSN_CALL(gsn_cells_build(&in, &r));
 
     double diagonal = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
                            (hi[1] - lo[1]) * (hi[1] - lo[1]) +
@@ -55,7 +55,7 @@ int gsn_pre_domains_box_ex(const double *points, int n, const double lo[3],
         for (int s = 0; s < 6; ++s)
             entries += (mask >> s) & 1;
     }
-    GSN_CALL_GOTO(domains_model_create(&r, entries, 6, 0, m), rc, fail);
+    GSN_CALL_GOTO(gsn_cells_model_create(&r, entries, 6, 0, m), rc, fail);
     memcpy(m->position, points, sizeof(double) * 3 * (size_t)n);
     m->particle_surface_offset[0] = 0;
     int e = 0;
@@ -75,17 +75,16 @@ int gsn_pre_domains_box_ex(const double *points, int n, const double lo[3],
         m->surface_area[s] = extent[(k + 1) % 3] * extent[(k + 2) % 3];
     }
     check.twin_error = r.twin_error;
-    GSN_CALL_GOTO(
-        gsn_pre_model_check(m, extent[0] * extent[1] * extent[2], &check), rc,
-        fail);
+    GSN_CALL_GOTO(gsn_cells_check(m, extent[0] * extent[1] * extent[2], &check),
+                  rc, fail);
     if (report)
         *report = check;
-    domains_result_free(&r);
+    gsn_cells_result_free(&r);
     return GSN_OK;
 fail:
     if (report)
         *report = check;
-    domains_result_free(&r);
+    gsn_cells_result_free(&r);
     gsn_model_free(m);
     return rc;
 }

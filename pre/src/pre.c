@@ -6,10 +6,9 @@
  * physical surfaces, checks the model and writes model.h5 atomically.
  * gmsh 4.8 pitfalls: TOOLCHAIN.md, "gmsh 4.8 C API". */
 #include "geoscni/pre.h"
-#include "domains.h"
+#include "geoscni/cells.h"
 #include "geoscni/error.h"
 #include "geoscni/files.h"
-#include "polyhedron.h"
 #include "refine.h"
 
 #include <fenv.h>
@@ -74,13 +73,11 @@ struct mesh {
     double *position;
     int tetrahedron_count;
     int *tetrahedra;
-    int *face_label; /* 4 per tetrahedron, see domain_body */
+    int *face_label; /* 4 per tetrahedron, see gsn_cells_body */
     int surface_count;
     char (*surface_name)[GSN_H5_STRING_SIZE];
     int *surface_tag;
-    double *surface_area;
     int *particle_surface_offset, *particle_surface;
-    double volume; /* sum of the tetrahedra */
 };
 
 static void mesh_free(struct mesh *m)
@@ -90,7 +87,6 @@ static void mesh_free(struct mesh *m)
     free(m->face_label);
     free(m->surface_name);
     free(m->surface_tag);
-    free(m->surface_area);
     free(m->particle_surface_offset);
     free(m->particle_surface);
     memset(m, 0, sizeof *m);
@@ -410,21 +406,8 @@ static int mesh_read_tetrahedra(const struct gsn_case *c, struct mesh *m,
         if (index[tags[i]] >= 0)
             memcpy(&m->position[3 * index[tags[i]]], &coord[3 * i],
                    sizeof(double[3]));
-    m->volume = 0.0;
-    for (size_t t = 0; t < nt; ++t) {
-        for (int k = 0; k < 4; ++k)
-            m->tetrahedra[4 * t + k] = index[nodes[4 * t + k]];
-        const double *x0 = &m->position[3 * m->tetrahedra[4 * t]];
-        double e[3][3];
-        for (int k = 0; k < 3; ++k)
-            for (int j = 0; j < 3; ++j)
-                e[k][j] =
-                    m->position[3 * m->tetrahedra[4 * t + k + 1] + j] - x0[j];
-        double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-                     e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                     e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-        m->volume += fabs(det) / 6.0;
-    }
+    for (size_t t = 0; t < 4 * nt; ++t)
+        m->tetrahedra[t] = index[nodes[t]];
     *index_of_tag = index;
     *tag_limit = limit;
 done:
@@ -433,18 +416,6 @@ done:
     gmshFree(coord);
     gmshFree(parametric);
     return rc;
-}
-
-static double triangle_area(const double *a, const double *b, const double *c)
-{
-    double u[3], v[3];
-    for (int k = 0; k < 3; ++k) {
-        u[k] = b[k] - a[k];
-        v[k] = c[k] - a[k];
-    }
-    double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
-           z = u[0] * v[1] - u[1] * v[0];
-    return 0.5 * sqrt(x * x + y * y + z * z);
 }
 
 static int compare_pairs(const void *pa, const void *pb)
@@ -510,9 +481,8 @@ static int mesh_read_surfaces(struct mesh *m, const int *index, size_t limit,
     m->surface_count = ns;
     m->surface_name = calloc((size_t)ns + 1, sizeof *m->surface_name);
     m->surface_tag = calloc((size_t)ns + 1, sizeof(int));
-    m->surface_area = calloc((size_t)ns + 1, sizeof(double));
     m->particle_surface_offset = calloc((size_t)m->node_count + 1, sizeof(int));
-    GSN_CHECK_GOTO(m->surface_name && m->surface_tag && m->surface_area &&
+    GSN_CHECK_GOTO(m->surface_name && m->surface_tag &&
                        m->particle_surface_offset,
                    rc, GSN_ERR_MEMORY, done, "cannot allocate the surfaces");
     for (int s = 0; s < ns; ++s) {
@@ -591,32 +561,18 @@ static int mesh_label_faces(struct mesh *m, const struct face_hash *surface_of)
                 size_t s = face_slot(surface_of, key);
                 m->face_label[f] = face_found(surface_of, s)
                                        ? -1 - surface_of->value[s]
-                                       : POLY_LABEL_UNTAGGED;
+                                       : GSN_CELLS_LABEL_UNTAGGED;
             } else {
                 GSN_CHECK_GOTO(m->face_label[faces.value[slot]] !=
-                                   POLY_LABEL_INTERNAL,
+                                   GSN_CELLS_LABEL_INTERNAL,
                                rc, GSN_ERR_INPUT, done,
                                "the mesh has a face shared by more than two "
                                "tetrahedra (nodes %d %d %d)",
                                key[0], key[1], key[2]);
-                m->face_label[faces.value[slot]] = POLY_LABEL_INTERNAL;
-                m->face_label[f] = POLY_LABEL_INTERNAL;
+                m->face_label[faces.value[slot]] = GSN_CELLS_LABEL_INTERNAL;
+                m->face_label[f] = GSN_CELLS_LABEL_INTERNAL;
             }
         }
-    /* gmsh's area of each surface: its triangles on the body's boundary (a
-     * named surface between two volumes bounds no nodal domain) */
-    for (int s = 0; s < m->surface_count; ++s)
-        m->surface_area[s] = 0.0;
-    for (size_t f = 0; f < 4 * nt; ++f) {
-        int label = m->face_label[f];
-        if (label >= 0 || label <= POLY_LABEL_HULL)
-            continue;
-        const int *v = &m->tetrahedra[4 * (f / 4)];
-        const int *o = opposite[f % 4];
-        m->surface_area[-1 - label] +=
-            triangle_area(&m->position[3 * v[o[0]]], &m->position[3 * v[o[1]]],
-                          &m->position[3 * v[o[2]]]);
-    }
 done:
     face_hash_free(&faces);
     return rc;
@@ -720,46 +676,6 @@ done:
     return rc;
 }
 
-static int pre_domains(const struct gsn_case *c,
-                       const struct gsn_pre_options *options,
-                       const struct mesh *mesh, struct domain_result *r)
-{
-    struct domain_input in;
-    memset(&in, 0, sizeof in);
-    in.particle_count = mesh->node_count;
-    in.position = mesh->position;
-    for (int k = 0; k < 3; ++k) {
-        in.lo[k] = INFINITY;
-        in.hi[k] = -INFINITY;
-    }
-    for (int i = 0; i < mesh->node_count; ++i)
-        for (int k = 0; k < 3; ++k) {
-            double x = mesh->position[3 * i + k];
-            in.lo[k] = x < in.lo[k] ? x : in.lo[k];
-            in.hi[k] = x > in.hi[k] ? x : in.hi[k];
-        }
-    double diagonal = 0.0;
-    for (int k = 0; k < 3; ++k)
-        diagonal += (in.hi[k] - in.lo[k]) * (in.hi[k] - in.lo[k]);
-    diagonal = sqrt(diagonal);
-    /* a hull a little larger than the body: its faces never coincide with
-     * the body's, so every cell that reaches them is cut by a piece */
-    for (int k = 0; k < 3; ++k) {
-        in.lo[k] -= 1e-6 * diagonal;
-        in.hi[k] += 1e-6 * diagonal;
-    }
-    for (int s = 0; s < 6; ++s)
-        in.box_label[s] = POLY_LABEL_HULL;
-    in.body.tetrahedron_count = mesh->tetrahedron_count;
-    in.body.tetrahedra = mesh->tetrahedra;
-    in.body.face_label = mesh->face_label;
-    in.facet_points = c->facet_points;
-    in.threads = options->threads;
-    in.tetrahedra_only = options->tetrahedra_only;
-    GSN_CALL(domains_build(&in, r));
-    return GSN_OK;
-}
-
 int gsn_pre_run(const struct gsn_case *c, const char *outdir,
                 const struct gsn_pre_options *options)
 {
@@ -778,9 +694,8 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
     GSN_CALL(gmsh_session_begin_case(&session, c));
     struct mesh mesh;
     memset(&mesh, 0, sizeof mesh);
-    struct domain_result r;
-    memset(&r, 0, sizeof r);
-    struct gsn_model m;
+    struct gsn_model bare, m;
+    memset(&bare, 0, sizeof bare);
     memset(&m, 0, sizeof m);
     double estimate = 0.0;
     /* HXT takes OpenMP's thread count, whatever gmsh's options say */
@@ -791,33 +706,35 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
         goto done;
     double t_mesh = omp_get_wtime() - t0;
 
-    GSN_CALL_GOTO(pre_domains(c, options, &mesh, &r), rc, done);
-    int entries = mesh.particle_surface_offset[mesh.node_count];
-    GSN_CALL_GOTO(domains_model_create(&r, entries, mesh.surface_count,
-                                       mesh.tetrahedron_count, &m),
-                  rc, done);
+    /* The particles, their surfaces and the body's tetrahedra, in Morton
+     * order (the solver's passes then find neighbours in cache), then
+     * their cells, checked (gsn_cells_model_at). */
     int n = mesh.node_count, ns = mesh.surface_count;
-    memcpy(m.position, mesh.position, sizeof(double) * 3 * (size_t)n);
-    memcpy(m.particle_surface_offset, mesh.particle_surface_offset,
+    int entries = mesh.particle_surface_offset[n];
+    GSN_CALL_GOTO(
+        gsn_model_allocate(&bare, n, entries, 0, 0, ns, mesh.tetrahedron_count),
+        rc, done);
+    memcpy(bare.position, mesh.position, sizeof(double) * 3 * (size_t)n);
+    memcpy(bare.particle_surface_offset, mesh.particle_surface_offset,
            sizeof(int) * (size_t)(n + 1));
-    memcpy(m.particle_surface, mesh.particle_surface,
+    memcpy(bare.particle_surface, mesh.particle_surface,
            sizeof(int) * (size_t)entries);
-    memcpy(m.surface_name, mesh.surface_name,
-           sizeof *m.surface_name * (size_t)ns);
-    memcpy(m.surface_tag, mesh.surface_tag, sizeof(int) * (size_t)ns);
-    memcpy(m.surface_area, mesh.surface_area, sizeof(double) * (size_t)ns);
-    memcpy(m.tetrahedra, mesh.tetrahedra,
+    memcpy(bare.surface_name, mesh.surface_name,
+           sizeof *bare.surface_name * (size_t)ns);
+    memcpy(bare.surface_tag, mesh.surface_tag, sizeof(int) * (size_t)ns);
+    memcpy(bare.tetrahedra, mesh.tetrahedra,
            sizeof(int) * 4 * (size_t)mesh.tetrahedron_count);
-
-    /* Morton order: the solver's passes then find neighbours in cache. */
-    GSN_CALL_GOTO(gsn_model_sort_spatially(&m), rc, done);
-    double t1 = omp_get_wtime();
-    struct gsn_pre_check check;
+    for (int f = 0; f < 4 * mesh.tetrahedron_count; ++f)
+        bare.tetrahedron_face[f] =
+            gsn_cells_face_from_label(mesh.face_label[f]);
+    GSN_CALL_GOTO(gsn_model_sort_spatially(&bare), rc, done);
+    struct gsn_cells_options cells = {c->facet_points, options->threads,
+                                      options->tetrahedra_only};
+    struct gsn_cells_report check;
     memset(&check, 0, sizeof check);
-    check.twin_error = r.twin_error;
-    GSN_CALL_GOTO(gsn_pre_model_check(&m, mesh.volume, &check), rc, done);
-    double t_check = omp_get_wtime() - t1;
-    t1 = omp_get_wtime();
+    GSN_CALL_GOTO(gsn_cells_model_at(&bare, NULL, &cells, &m, &check), rc,
+                  done);
+    double t1 = omp_get_wtime();
     GSN_CALL_GOTO(gsn_model_write(path, &m, c), rc, done);
     double t_write = omp_get_wtime() - t1;
     if (!options->quiet) {
@@ -825,21 +742,21 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
                "(%d quadrature points), %d cells cut by the boundary (%d by "
                "tetrahedra)\n",
                n, estimate, m.tetrahedron_count, m.facet_count,
-               m.facet_point_offset[m.facet_count], r.crossing_count,
-               r.pieced_count);
+               m.facet_point_offset[m.facet_count], check.crossing_count,
+               check.pieced_count);
         printf("pre: volume %.10g m^3 (error %.1e), closure %.1e, moment "
                "%.1e, twins %.1e, surface areas %.1e (tolerance 1e-10)\n",
-               mesh.volume, check.volume_error, check.closure_error,
+               check.body_volume, check.volume_error, check.closure_error,
                check.moment_error, check.twin_error, check.area_error);
         printf("pre: time %.2f s: meshing %.2f, Delaunay %.2f, cells %.2f, "
-               "checks %.2f, writing %.2f -> %s\n",
-               omp_get_wtime() - t0, t_mesh, r.time_delaunay, r.time_cells,
-               t_check, t_write, path);
+               "writing %.2f -> %s\n",
+               omp_get_wtime() - t0, t_mesh, check.time_delaunay,
+               check.time_cells, t_write, path);
         GSN_CALL_GOTO(pre_refine_report(c, &m), rc, done);
     }
 done:
     gsn_model_free(&m);
-    domains_result_free(&r);
+    gsn_model_free(&bare);
     mesh_free(&mesh);
     return rc;
 }

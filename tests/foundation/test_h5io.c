@@ -10,6 +10,11 @@
 #include <string.h>
 #include <unistd.h>
 
+/* The schema version as text, for the refusal message. */
+#define SCHEMA_STRING(v) #v
+#define SCHEMA_TEXT_OF(v) SCHEMA_STRING(v)
+#define SCHEMA_TEXT SCHEMA_TEXT_OF(GSN_SCHEMA_VERSION)
+
 /* Two unit cubes side by side: particles at their centres, 11 facets. */
 static void build_model(struct gsn_model *m)
 {
@@ -181,7 +186,8 @@ int main(void)
         void (*edit)(hid_t);
         const char *fragment;
     } edits[] = {
-        {set_version_99, "schema version 99, but this geoscni reads version 1"},
+        {set_version_99,
+         "schema version 99, but this geoscni reads version " SCHEMA_TEXT},
         {set_kind_results, "a results file, but a model file is expected"},
         {delete_area, "dataset 'facets/area' (area of the facet) is missing"},
         {corrupt_owner, "facets/owner[10] = 42 is out of range [0, 2)"},

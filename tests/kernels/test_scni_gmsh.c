@@ -67,9 +67,9 @@ static void check_case(const char *path)
     /* the geometric part of eq. (23): pre's own check of the cells */
     for (int p = 0; p < m.particle_count; ++p)
         body += m.volume[p];
-    struct gsn_pre_check check;
+    struct gsn_cells_report check;
     memset(&check, 0, sizeof check);
-    TEST_INT(gsn_pre_model_check(&m, body, &check), GSN_OK);
+    TEST_INT(gsn_cells_check(&m, body, &check), GSN_OK);
     const enum gsn_integration method[3] = {
         GSN_INTEGRATION_SCNI, GSN_INTEGRATION_SCNI, GSN_INTEGRATION_DNI};
     const enum gsn_stabilization stab[3] = {GSN_STABILIZATION_NONE,

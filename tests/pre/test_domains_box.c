@@ -50,7 +50,7 @@ static int lattice(double *x, double jitter)
     return n;
 }
 
-static void expect_checks_pass(const struct gsn_pre_check *r)
+static void expect_checks_pass(const struct gsn_cells_report *r)
 {
     TEST_TRUE(r->volume_error <= TIGHT);
     TEST_TRUE(r->closure_error <= TIGHT);
@@ -67,7 +67,7 @@ static void test_lattice(int facet_points)
     double x[3 * NX * NY * NZ];
     int n = lattice(x, 0.0);
     struct gsn_model m;
-    struct gsn_pre_check r;
+    struct gsn_cells_report r;
     int rc = gsn_pre_domains_box_ex(x, n, lo, hi, facet_points, 0, &m, &r);
     TEST_INT(rc, GSN_OK);
     if (rc != GSN_OK) {
@@ -129,7 +129,7 @@ static void test_jittered(int facet_points)
     double x[3 * NX * NY * NZ];
     int n = lattice(x, 1e-9);
     struct gsn_model m;
-    struct gsn_pre_check r;
+    struct gsn_cells_report r;
     int rc = gsn_pre_domains_box_ex(x, n, lo, hi, facet_points, 0, &m, &r);
     TEST_INT(rc, GSN_OK);
     if (rc != GSN_OK) {
@@ -158,7 +158,7 @@ static void test_random_and_threads(void)
         for (int c = 0; c < 3; ++c)
             x[3 * p + c] = lo[c] + (hi[c] - lo[c]) * uniform();
     struct gsn_model a, b;
-    struct gsn_pre_check r;
+    struct gsn_cells_report r;
     TEST_INT(gsn_pre_domains_box_ex(x, N, lo, hi, 3, 1, &a, &r), GSN_OK);
     expect_checks_pass(&r);
     TEST_INT(gsn_pre_domains_box_ex(x, N, lo, hi, 3, 2, &b, NULL), GSN_OK);
@@ -180,13 +180,13 @@ static void test_random_and_threads(void)
         ++f;
     for (int c = 0; c < 3; ++c)
         a.facet_normal[3 * f + c] = -a.facet_normal[3 * f + c];
-    TEST_INT(gsn_pre_model_check(&a, 3.0, NULL), GSN_ERR_INPUT);
+    TEST_INT(gsn_cells_check(&a, 3.0, NULL), GSN_ERR_INPUT);
     for (int c = 0; c < 3; ++c)
         a.facet_normal[3 * f + c] = -a.facet_normal[3 * f + c];
-    TEST_INT(gsn_pre_model_check(&a, 3.0, NULL), GSN_OK);
+    TEST_INT(gsn_cells_check(&a, 3.0, NULL), GSN_OK);
     /* a quadrature point moved along the facet breaks the moment check */
     a.facet_point[3 * a.facet_point_offset[f]] += 1e-6;
-    TEST_INT(gsn_pre_model_check(&a, 3.0, NULL), GSN_ERR_INPUT);
+    TEST_INT(gsn_cells_check(&a, 3.0, NULL), GSN_ERR_INPUT);
     gsn_model_free(&a);
 }
 

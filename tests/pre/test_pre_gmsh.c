@@ -61,9 +61,9 @@ static int run_pre(const char *case_path, int threads, struct gsn_model *m,
 
 static void expect_model_checks(const struct gsn_model *m, double volume)
 {
-    struct gsn_pre_check r;
+    struct gsn_cells_report r;
     memset(&r, 0, sizeof r);
-    TEST_INT(gsn_pre_model_check(m, volume, &r), GSN_OK);
+    TEST_INT(gsn_cells_check(m, volume, &r), GSN_OK);
     TEST_TRUE(r.volume_error <= CHECK_TOLERANCE);
     TEST_TRUE(r.closure_error <= CHECK_TOLERANCE);
     TEST_TRUE(r.moment_error <= CHECK_TOLERANCE);

@@ -37,7 +37,15 @@ struct gsn_model {
 
     int tetrahedron_count;
     int *tetrahedra; /* tetrahedron_count x 4 particle indices */
+    /* tetrahedron_count x 4: what the face opposite vertex k of each
+     * tetrahedron lies on: a surface index, or GSN_MODEL_FACE_INTERNAL
+     * (shared by two tetrahedra), or GSN_MODEL_FACE_UNTAGGED (the body's
+     * boundary outside every physical surface) */
+    int *tetrahedron_face;
 };
+
+#define GSN_MODEL_FACE_INTERNAL (-1)
+#define GSN_MODEL_FACE_UNTAGGED (-2)
 
 /* Allocates every array for the given sizes (zeroed); offsets are left 0. */
 int gsn_model_allocate(struct gsn_model *m, int particle_count,

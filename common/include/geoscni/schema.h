@@ -9,7 +9,9 @@
 extern "C" {
 #endif
 
-#define GSN_SCHEMA_VERSION 1
+/* 2 (2026-12-02): model.h5 holds mesh/tetrahedron_face, the checkpoint the
+ * reference configuration of the last update (issue 15) */
+#define GSN_SCHEMA_VERSION 2
 #define GSN_FILE_KIND_MODEL "model"
 #define GSN_FILE_KIND_RESULTS "results"
 
@@ -74,7 +76,11 @@ struct gsn_dataset_info {
     X(GSN_MODEL_SURFACE_AREA, "surfaces/area", GSN_H5_DOUBLE, 1, "m^2",        \
       "area of each physical surface as gmsh measures it")                     \
     X(GSN_MODEL_TETRAHEDRA, "mesh/tetrahedra", GSN_H5_INT, 4, "1",             \
-      "tetrahedra of the gmsh mesh as particle indices, for visualization")
+      "tetrahedra of the gmsh mesh as particle indices: the body's convex "    \
+      "pieces and the cells of the pictures")                                  \
+    X(GSN_MODEL_TETRAHEDRON_FACE, "mesh/tetrahedron_face", GSN_H5_INT, 4, "1", \
+      "what the face opposite vertex k of each tetrahedron lies on: a "        \
+      "surface index, -1 inside the body, -2 boundary without a surface")
 
 /* One frame of results.h5: a group GSN_FRAME_GROUP_FORMAT with attributes
  * "time" (s) and "step", holding these datasets (one row per particle). */

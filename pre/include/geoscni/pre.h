@@ -4,6 +4,7 @@
 #define GEOSCNI_PRE_H
 
 #include "geoscni/case.h"
+#include "geoscni/cells.h"
 #include "geoscni/model.h"
 
 #include <stddef.h>
@@ -29,7 +30,7 @@ struct gsn_pre_options {
 
 /* Builds OUTDIR/model.h5 from the case: meshes the geometry with gmsh,
  * takes the mesh nodes as particles, clips their Voronoi cells to the body,
- * checks the model (gsn_pre_model_check) and writes it. */
+ * checks the model (gsn_cells_check) and writes it. */
 int gsn_pre_run(const struct gsn_case *c, const char *outdir,
                 const struct gsn_pre_options *options);
 
@@ -42,33 +43,6 @@ int gsn_pre_check_geometry(const struct gsn_case *c);
 /* The version of the gmsh library loaded at run time, e.g. "4.8.4". */
 int gsn_pre_gmsh_version(char *out, size_t size);
 
-/* Tolerances of the model checks (issue 3, point 3). */
-#define GSN_PRE_TOLERANCE_VOLUME 1e-10  /* sum of volumes, relative */
-#define GSN_PRE_TOLERANCE_CLOSURE 1e-10 /* |sum A n| / V^(2/3) per cell */
-#define GSN_PRE_TOLERANCE_MOMENT 1e-10  /* first-moment identity / V */
-#define GSN_PRE_TOLERANCE_TWIN 1e-10    /* twin facet areas / V^(2/3) */
-#define GSN_PRE_TOLERANCE_AREA 1e-10    /* surface areas, relative */
-
-/* What the checks measured: each error is the largest over the model, in
- * the units of its tolerance above. */
-struct gsn_pre_check {
-    double volume_error;  /* |sum V - body volume| / body volume */
-    double closure_error; /* max over cells |sum A n| / V^(2/3) */
-    double moment_error;  /* max |sum A n_j (c_k - x_k) - V delta_jk| / V */
-    double twin_error;    /* max |A_ij - A_ji| / V^(2/3), when known */
-    double area_error;    /* max over surfaces |area - gmsh's| / gmsh's */
-    double min_volume;    /* smallest cell volume, m^3 */
-};
-
-/* Checks a model (issue 3, point 3): the volumes add up to body_volume, every
- * cell closes, sum over facets of A n_j (c_k - x_k) = V delta_jk per cell
- * (with the facets' quadrature points), every cell has positive volume, each
- * (owner, neighbour) pair is consistent, and the boundary area of every
- * surface equals m->surface_area. Fills report (may be NULL) and returns
- * GSN_ERR_INPUT naming the worst cell or surface when a check fails. */
-int gsn_pre_model_check(const struct gsn_model *m, double body_volume,
-                        struct gsn_pre_check *report);
-
 /* Voronoi cells of n arbitrary points (n x 3, row-major, m) clipped to the
  * axis-aligned box [lo, hi] that holds them, as a complete model (allocated
  * here, freed with gsn_model_free): volumes, centroids, facets stored once
@@ -77,7 +51,7 @@ int gsn_pre_model_check(const struct gsn_model *m, double body_volume,
  * the particles lying on a face (within 1e-12 of the box diagonal) are tagged
  * with the surfaces xmin, xmax, ymin, ymax, zmin, zmax (indices 0..5); a
  * particle on an edge or corner carries every face it touches. No
- * tetrahedra. The model is checked (gsn_pre_model_check); report may be
+ * tetrahedra. The model is checked (gsn_cells_check); report may be
  * NULL. threads 0 uses OpenMP's default. */
 int gsn_pre_domains_box(const double *points, int n, const double lo[3],
                         const double hi[3], int facet_points,
@@ -86,7 +60,8 @@ int gsn_pre_domains_box(const double *points, int n, const double lo[3],
 /* The same with the checks' report and a thread count. */
 int gsn_pre_domains_box_ex(const double *points, int n, const double lo[3],
                            const double hi[3], int facet_points, int threads,
-                           struct gsn_model *m, struct gsn_pre_check *report);
+                           struct gsn_model *m,
+                           struct gsn_cells_report *report);
 
 /* Particles of a refinement region of the case (particles.refine[region];
  * region -1: the body outside every region and its transition) in a model:

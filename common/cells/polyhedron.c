@@ -16,8 +16,8 @@ static void cross3(const double *a, const double *b, double *c)
     c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-void poly_init_box(struct poly *p, const double lo[3], const double hi[3],
-                   const int label[6])
+void gsn_poly_init_box(struct gsn_poly *p, const double lo[3],
+                       const double hi[3], const int label[6])
 {
     /* vertex k has x = hi if bit 0, y = hi if bit 1, z = hi if bit 2 */
     for (int k = 0; k < 8; ++k) {
@@ -44,8 +44,8 @@ void poly_init_box(struct poly *p, const double lo[3], const double hi[3],
     p->face_start[6] = 24;
 }
 
-int poly_init_tetrahedron(struct poly *p, const double *vertices,
-                          const int label[4])
+int gsn_poly_init_tetrahedron(struct gsn_poly *p, const double *vertices,
+                              const int label[4])
 {
     const double(*v)[3] = (const double(*)[3])vertices;
     double e1[3], e2[3], e3[3], c[3];
@@ -95,7 +95,8 @@ int poly_init_tetrahedron(struct poly *p, const double *vertices,
     return 1;
 }
 
-void poly_copy(struct poly *restrict to, const struct poly *restrict from)
+void gsn_poly_copy(struct gsn_poly *restrict to,
+                   const struct gsn_poly *restrict from)
 {
     to->vertex_count = from->vertex_count;
     to->face_count = from->face_count;
@@ -112,8 +113,9 @@ void poly_copy(struct poly *restrict to, const struct poly *restrict from)
 }
 
 /* The vertex of out that splits edge (a, b) of p, created once per edge. */
-static int clip_edge_vertex(const struct poly *p, struct poly_scratch *s, int a,
-                            int b, int *edge_a, int *edge_b, int *edge_vertex,
+static int clip_edge_vertex(const struct gsn_poly *p,
+                            struct gsn_poly_scratch *s, int a, int b,
+                            int *edge_a, int *edge_b, int *edge_vertex,
                             int *edge_count)
 {
     if (a > b) {
@@ -124,7 +126,7 @@ static int clip_edge_vertex(const struct poly *p, struct poly_scratch *s, int a,
     for (int e = 0; e < *edge_count; ++e)
         if (edge_a[e] == a && edge_b[e] == b)
             return edge_vertex[e];
-    struct poly *out = &s->out;
+    struct gsn_poly *out = &s->out;
     if (out->vertex_count >= POLY_MAX_VERTICES ||
         *edge_count >= POLY_MAX_VERTICES)
         return -1;
@@ -140,9 +142,10 @@ static int clip_edge_vertex(const struct poly *p, struct poly_scratch *s, int a,
     return out->vertex_count++;
 }
 
-enum poly_clip_result poly_clip(struct poly *p, struct poly_scratch *s,
-                                const double n[3], double b, int label,
-                                double eps)
+enum gsn_poly_clip_result gsn_poly_clip(struct gsn_poly *p,
+                                        struct gsn_poly_scratch *s,
+                                        const double n[3], double b, int label,
+                                        double eps)
 {
     int outside = 0, inside = 0;
     for (int v = 0; v < p->vertex_count; ++v) {
@@ -173,7 +176,7 @@ enum poly_clip_result poly_clip(struct poly *p, struct poly_scratch *s,
         return POLY_CLIP_EMPTY;
     }
 
-    struct poly *out = &s->out;
+    struct gsn_poly *out = &s->out;
     out->vertex_count = 0;
     for (int v = 0; v < p->vertex_count; ++v) {
         s->map[v] = -1;
@@ -286,11 +289,11 @@ enum poly_clip_result poly_clip(struct poly *p, struct poly_scratch *s,
         p->face_start[0] = 0;
         return POLY_CLIP_EMPTY;
     }
-    poly_copy(p, out);
+    gsn_poly_copy(p, out);
     return POLY_CLIP_CUT;
 }
 
-double poly_radius2(const struct poly *p)
+double gsn_poly_radius2(const struct gsn_poly *p)
 {
     double r2 = 0.0;
     for (int v = 0; v < p->vertex_count; ++v) {
@@ -302,7 +305,7 @@ double poly_radius2(const struct poly *p)
     return r2;
 }
 
-void poly_volume(const struct poly *p, double *volume, double moment[3])
+void gsn_poly_volume(const struct gsn_poly *p, double *volume, double moment[3])
 {
     double v6 = 0.0, m24[3] = {0.0, 0.0, 0.0};
     for (int f = 0; f < p->face_count; ++f) {
@@ -336,7 +339,7 @@ static void twice_triangle_area(const double *x0, const double *x1,
     cross3(a, b, c);
 }
 
-void poly_face_area(const struct poly *p, int f, double area[3])
+void gsn_poly_face_area(const struct gsn_poly *p, int f, double area[3])
 {
     int begin = p->face_start[f], end = p->face_start[f + 1];
     const double *x0 = &p->vertex[3 * p->entry[begin]];
@@ -351,9 +354,9 @@ void poly_face_area(const struct poly *p, int f, double area[3])
     }
 }
 
-int poly_face_quadrature(const struct poly *p, int f, const double normal[3],
-                         int facet_points, double *restrict point,
-                         double *restrict weight)
+int gsn_poly_face_quadrature(const struct gsn_poly *p, int f,
+                             const double normal[3], int facet_points,
+                             double *restrict point, double *restrict weight)
 {
     int begin = p->face_start[f], end = p->face_start[f + 1];
     const double *x0 = &p->vertex[3 * p->entry[begin]];
@@ -391,8 +394,8 @@ int poly_face_quadrature(const struct poly *p, int f, const double normal[3],
     return count;
 }
 
-int poly_meets_triangle(const struct poly *p, const double *t, double eps,
-                        double area_eps)
+int gsn_poly_meets_triangle(const struct gsn_poly *p, const double *t,
+                            double eps, double area_eps)
 {
     enum { MAX = POLY_MAX_FACES + 3 };
     double a[3 * MAX], b[3 * MAX];

@@ -6,8 +6,8 @@
  * every rule integrates linear functions exactly. A facet is stored once and
  * counts for its neighbour with the opposite normal, so these sums also
  * check that the twins match (seed paper eq. (24) needs exactly that). */
+#include "geoscni/cells.h"
 #include "geoscni/error.h"
-#include "geoscni/pre.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -56,10 +56,10 @@ static int check_facets(const struct gsn_model *m, double *closure,
     return GSN_OK;
 }
 
-int gsn_pre_model_check(const struct gsn_model *m, double body_volume,
-                        struct gsn_pre_check *report)
+int gsn_cells_check(const struct gsn_model *m, double body_volume,
+                    struct gsn_cells_report *report)
 {
-    struct gsn_pre_check r;
+    struct gsn_cells_report r;
     memset(&r, 0, sizeof r);
     r.twin_error = report ? report->twin_error : 0.0;
     int n = m->particle_count, rc = GSN_OK;
@@ -109,36 +109,36 @@ int gsn_pre_model_check(const struct gsn_model *m, double body_volume,
                 area += m->facet_area[f];
         double e = fabs(area - m->surface_area[s]) / m->surface_area[s];
         r.area_error = fmax(r.area_error, e);
-        GSN_CHECK_GOTO(e <= GSN_PRE_TOLERANCE_AREA, rc, GSN_ERR_INPUT, done,
+        GSN_CHECK_GOTO(e <= GSN_CELLS_TOLERANCE_AREA, rc, GSN_ERR_INPUT, done,
                        "surface '%s': its boundary facets add up to %.17g "
                        "m^2, gmsh's area is %.17g m^2 (relative error %.3g, "
                        "tolerance %g)",
                        m->surface_name[s], area, m->surface_area[s], e,
-                       GSN_PRE_TOLERANCE_AREA);
+                       GSN_CELLS_TOLERANCE_AREA);
     }
     const double *x = &m->position[3 * worst_closure];
-    GSN_CHECK_GOTO(r.closure_error <= GSN_PRE_TOLERANCE_CLOSURE, rc,
+    GSN_CHECK_GOTO(r.closure_error <= GSN_CELLS_TOLERANCE_CLOSURE, rc,
                    GSN_ERR_INPUT, done,
                    "the nodal domain of particle %d (%g, %g, %g) does not "
                    "close: |sum A n| = %.3g V^(2/3) (tolerance %g)",
                    worst_closure, x[0], x[1], x[2], r.closure_error,
-                   GSN_PRE_TOLERANCE_CLOSURE);
+                   GSN_CELLS_TOLERANCE_CLOSURE);
     x = &m->position[3 * worst_moment];
-    GSN_CHECK_GOTO(r.moment_error <= GSN_PRE_TOLERANCE_MOMENT, rc,
+    GSN_CHECK_GOTO(r.moment_error <= GSN_CELLS_TOLERANCE_MOMENT, rc,
                    GSN_ERR_INPUT, done,
                    "the nodal domain of particle %d (%g, %g, %g): sum A n_j "
                    "(c_k - x_k) differs from V delta_jk by %.3g V "
                    "(tolerance %g)",
                    worst_moment, x[0], x[1], x[2], r.moment_error,
-                   GSN_PRE_TOLERANCE_MOMENT);
+                   GSN_CELLS_TOLERANCE_MOMENT);
     GSN_CHECK_GOTO(
-        r.volume_error <= GSN_PRE_TOLERANCE_VOLUME, rc, GSN_ERR_INPUT, done,
+        r.volume_error <= GSN_CELLS_TOLERANCE_VOLUME, rc, GSN_ERR_INPUT, done,
         "the nodal domains add up to %.17g m^3, the body's volume "
         "is %.17g m^3 (relative error %.3g, tolerance %g)",
-        total, body_volume, r.volume_error, GSN_PRE_TOLERANCE_VOLUME);
-    GSN_CHECK_GOTO(r.twin_error <= GSN_PRE_TOLERANCE_TWIN, rc, GSN_ERR_INPUT,
+        total, body_volume, r.volume_error, GSN_CELLS_TOLERANCE_VOLUME);
+    GSN_CHECK_GOTO(r.twin_error <= GSN_CELLS_TOLERANCE_TWIN, rc, GSN_ERR_INPUT,
                    done, "twin facets differ by %.3g V^(2/3) (tolerance %g)",
-                   r.twin_error, GSN_PRE_TOLERANCE_TWIN);
+                   r.twin_error, GSN_CELLS_TOLERANCE_TWIN);
 done:
     free(closure);
     free(moment);

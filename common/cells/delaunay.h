@@ -1,6 +1,6 @@
 /* Delaunay neighbours by CGAL (delaunay.cpp, behind this C interface). */
-#ifndef GEOSCNI_PRE_DELAUNAY_H
-#define GEOSCNI_PRE_DELAUNAY_H
+#ifndef GEOSCNI_CELLS_DELAUNAY_H
+#define GEOSCNI_CELLS_DELAUNAY_H
 
 #ifdef __cplusplus
 extern "C" {

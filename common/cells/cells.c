@@ -12,7 +12,7 @@
  * so non-convex cells near re-entrant edges come out right. Cells
  * are clipped in parallel in blocks; the results do not depend on the
  * thread count. */
-#include "domains.h"
+#include "geoscni/cells.h"
 #include "delaunay.h"
 #include "geoscni/error.h"
 #include "polyhedron.h"
@@ -233,11 +233,11 @@ static void triangle_plane(const double *position, const int v[3], int opposite,
         3.0;
 }
 
-static int body_index_create(const struct domain_input *in, double spacing,
+static int body_index_create(const struct gsn_cells_input *in, double spacing,
                              struct body_index *b)
 {
     memset(b, 0, sizeof *b);
-    const struct domain_body *body = &in->body;
+    const struct gsn_cells_body *body = &in->body;
     int nt = body->tetrahedron_count, rc = GSN_OK;
     int count = 0;
     for (int t = 0; t < nt; ++t)
@@ -364,8 +364,8 @@ static int block_reserve(struct block_output *b, int faces, int points)
 /* ---- one cell ----------------------------------------------------------- */
 
 struct worker {
-    struct poly cell, piece, tet;
-    struct poly_scratch scratch;
+    struct gsn_poly cell, piece, tet;
+    struct gsn_poly_scratch scratch;
     int *order; /* neighbours sorted by distance */
     double *distance2;
     int order_capacity;
@@ -375,27 +375,27 @@ struct worker {
 };
 
 struct context {
-    const struct domain_input *in;
+    const struct gsn_cells_input *in;
     const int *offset, *neighbour;
     const struct body_index *body;
     double eps, area_eps, drop_area;
     double convex_tolerance; /* a vertex this far out breaks convexity */
 };
 
-static int clip_checked(struct poly *p, struct poly_scratch *s,
+static int clip_checked(struct gsn_poly *p, struct gsn_poly_scratch *s,
                         const double n[3], double b, int label, double eps,
                         double eps_retry)
 {
-    enum poly_clip_result r = poly_clip(p, s, n, b, label, eps);
+    enum gsn_poly_clip_result r = gsn_poly_clip(p, s, n, b, label, eps);
     if (r == POLY_CLIP_TOPOLOGY)
-        r = poly_clip(p, s, n, b, label, eps_retry);
+        r = gsn_poly_clip(p, s, n, b, label, eps_retry);
     return r;
 }
 
 /* Adds the faces of p (local coordinates around x) to the block; faces
  * labelled INTERNAL are dropped. Returns 0 on memory failure, -1 if a hull
  * face is left (the cell reaches outside the body). */
-static int emit_faces(struct block_output *b, const struct poly *p,
+static int emit_faces(struct block_output *b, const struct gsn_poly *p,
                       const double x[3], int facet_points, double drop_area,
                       int *cell_faces)
 {
@@ -404,7 +404,7 @@ static int emit_faces(struct block_output *b, const struct poly *p,
         if (label == POLY_LABEL_INTERNAL)
             continue;
         double area[3];
-        poly_face_area(p, f, area);
+        gsn_poly_face_area(p, f, area);
         double a =
             sqrt(area[0] * area[0] + area[1] * area[1] + area[2] * area[2]);
         if (a <= drop_area)
@@ -420,8 +420,8 @@ static int emit_faces(struct block_output *b, const struct poly *p,
         b->face_area[k] = a;
         memcpy(&b->face_normal[3 * k], normal, sizeof normal);
         double *point = &b->point[3 * b->point_count];
-        int q = poly_face_quadrature(p, f, normal, facet_points, point,
-                                     &b->weight[b->point_count]);
+        int q = gsn_poly_face_quadrature(p, f, normal, facet_points, point,
+                                         &b->weight[b->point_count]);
         for (int i = 0; i < q; ++i)
             for (int j = 0; j < 3; ++j)
                 point[3 * i + j] += x[j];
@@ -449,7 +449,8 @@ static int cell_boundary_hits(const struct context *ctx, struct worker *w,
             for (int k = 0; k < 3; ++k)
                 tri[c][k] = position[3 * body->triangle[3 * t + c] + k] - x[k];
         if (!points_miss_box(&tri[0][0], 3, x, lo, hi, 0) &&
-            poly_meets_triangle(&w->cell, &tri[0][0], ctx->eps, ctx->area_eps))
+            gsn_poly_meets_triangle(&w->cell, &tri[0][0], ctx->eps,
+                                    ctx->area_eps))
             w->hit[hits++] = t;
     }
     return hits;
@@ -495,7 +496,7 @@ static int cell_cut_by_patch(const struct context *ctx, struct worker *w, int i,
 {
     const struct body_index *body = ctx->body;
     const double *x = &ctx->in->position[3 * i];
-    poly_copy(&w->piece, &w->cell);
+    gsn_poly_copy(&w->piece, &w->cell);
     for (int h = 0; h < hits; ++h) {
         int t = w->hit[h];
         const double *plane = &body->triangle_plane[4 * t];
@@ -519,7 +520,7 @@ static int cell_emit_pieces(const struct context *ctx, struct worker *w, int i,
                             struct block_output *b, double *volume,
                             double moment[3], int *cell_faces)
 {
-    const struct domain_body *body = &ctx->in->body;
+    const struct gsn_cells_body *body = &ctx->in->body;
     const double *position = ctx->in->position;
     const double *x = &position[3 * i];
     *volume = 0.0;
@@ -532,9 +533,10 @@ static int cell_emit_pieces(const struct context *ctx, struct worker *w, int i,
             for (int k = 0; k < 3; ++k)
                 v[c][k] = position[3 * body->tetrahedra[4 * t + c] + k] - x[k];
         if (points_miss_box(&v[0][0], 4, x, lo, hi, 1) ||
-            !poly_init_tetrahedron(&w->tet, &v[0][0], &body->face_label[4 * t]))
+            !gsn_poly_init_tetrahedron(&w->tet, &v[0][0],
+                                       &body->face_label[4 * t]))
             continue;
-        poly_copy(&w->piece, &w->cell);
+        gsn_poly_copy(&w->piece, &w->cell);
         int empty = 0;
         for (int f = 0; f < 4 && !empty; ++f) {
             const double *plane = &w->tet.face_plane[4 * f];
@@ -548,7 +550,7 @@ static int cell_emit_pieces(const struct context *ctx, struct worker *w, int i,
         if (empty)
             continue;
         double pv, pm[3];
-        poly_volume(&w->piece, &pv, pm);
+        gsn_poly_volume(&w->piece, &pv, pm);
         if (pv <= 0.0)
             continue;
         *volume += pv;
@@ -590,14 +592,14 @@ static int block_fail(struct block_output *b, int code, const char *format,
 static int cell_build(const struct context *ctx, struct worker *w, int i,
                       struct block_output *b, double *volume, double *centroid)
 {
-    const struct domain_input *in = ctx->in;
+    const struct gsn_cells_input *in = ctx->in;
     const double *x = &in->position[3 * i];
     double lo[3], hi[3];
     for (int k = 0; k < 3; ++k) {
         lo[k] = in->lo[k] - x[k];
         hi[k] = in->hi[k] - x[k];
     }
-    poly_init_box(&w->cell, lo, hi, in->box_label);
+    gsn_poly_init_box(&w->cell, lo, hi, in->box_label);
 
     int begin = ctx->offset[i], count = ctx->offset[i + 1] - begin;
     if (count > w->order_capacity) {
@@ -624,7 +626,7 @@ static int cell_build(const struct context *ctx, struct worker *w, int i,
                           (y[2] - x[2]) * (y[2] - x[2]);
     }
     sort_neighbours(w->order, w->distance2, count);
-    double radius2 = poly_radius2(&w->cell);
+    double radius2 = gsn_poly_radius2(&w->cell);
     for (int e = 0; e < count; ++e) {
         /* security radius: a neighbour farther than twice the farthest
          * vertex cannot cut the cell */
@@ -647,7 +649,7 @@ static int cell_build(const struct context *ctx, struct worker *w, int i,
                               "could not be clipped (degenerate neighbours)",
                               i, x);
         if (r == POLY_CLIP_CUT)
-            radius2 = poly_radius2(&w->cell);
+            radius2 = gsn_poly_radius2(&w->cell);
     }
 
     int cell_faces = 0, r = 1;
@@ -669,7 +671,7 @@ static int cell_build(const struct context *ctx, struct worker *w, int i,
             ++b->crossing;
             if (!in->tetrahedra_only && patch_is_convex(ctx, w, hits) &&
                 cell_cut_by_patch(ctx, w, i, hits)) {
-                poly_volume(&w->piece, &v, moment);
+                gsn_poly_volume(&w->piece, &v, moment);
                 r = emit_faces(b, &w->piece, x, in->facet_points,
                                ctx->drop_area, &cell_faces);
             } else {
@@ -680,7 +682,7 @@ static int cell_build(const struct context *ctx, struct worker *w, int i,
         }
     }
     if (!pieces) {
-        poly_volume(&w->cell, &v, moment);
+        gsn_poly_volume(&w->cell, &v, moment);
         r = emit_faces(b, &w->cell, x, in->facet_points, ctx->drop_area,
                        &cell_faces);
     }
@@ -714,33 +716,37 @@ static int cell_build(const struct context *ctx, struct worker *w, int i,
 
 /* ---- duplicates -------------------------------------------------------- */
 
-static const double *sort_points;
+/* A particle's position with its index, sorted to find exact duplicates. */
+struct sorted_point {
+    double x[3];
+    int index;
+};
 
 static int compare_points(const void *pa, const void *pb)
 {
-    const double *a = &sort_points[3 * *(const int *)pa];
-    const double *b = &sort_points[3 * *(const int *)pb];
+    const struct sorted_point *a = pa, *b = pb;
     for (int k = 0; k < 3; ++k)
-        if (a[k] != b[k])
-            return a[k] < b[k] ? -1 : 1;
-    return *(const int *)pa - *(const int *)pb;
+        if (a->x[k] != b->x[k])
+            return a->x[k] < b->x[k] ? -1 : 1;
+    return a->index - b->index;
 }
 
 static int check_exact_duplicates(const double *x, int n)
 {
-    int *order = malloc(sizeof(int) * (size_t)(n + 1));
-    GSN_CHECK(order != NULL, GSN_ERR_MEMORY, "cannot allocate %d indices", n);
-    for (int i = 0; i < n; ++i)
-        order[i] = i;
-    sort_points = x;
-    qsort(order, (size_t)n, sizeof(int), compare_points);
+    struct sorted_point *order = malloc(sizeof *order * (size_t)(n + 1));
+    GSN_CHECK(order != NULL, GSN_ERR_MEMORY, "cannot allocate %d points", n);
+    for (int i = 0; i < n; ++i) {
+        memcpy(order[i].x, &x[3 * i], sizeof order[i].x);
+        order[i].index = i;
+    }
+    qsort(order, (size_t)n, sizeof *order, compare_points);
     int a = -1, b = -1, count = 0;
     for (int k = 0; k + 1 < n; ++k) {
-        const double *p = &x[3 * order[k]], *q = &x[3 * order[k + 1]];
+        const double *p = order[k].x, *q = order[k + 1].x;
         if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) {
             if (count++ == 0) {
-                a = order[k];
-                b = order[k + 1];
+                a = order[k].index;
+                b = order[k + 1].index;
             }
         }
     }
@@ -794,7 +800,7 @@ static void faces_toward(const struct cell_faces *c, int i, int j, double *area,
 }
 
 static int assemble(const struct cell_faces *c, int n, const double *volume,
-                    const double *position, struct domain_result *out)
+                    const double *position, struct gsn_cells_result *out)
 {
     int total = c->offset[n];
     char *keep = malloc((size_t)total + 1);
@@ -828,7 +834,7 @@ static int assemble(const struct cell_faces *c, int n, const double *volume,
             double error = fabs(a_ij - a_ji) / scale;
             if (error > twin_error)
                 twin_error = error;
-            if (error > GSN_PRE_TOLERANCE_TWIN) {
+            if (error > GSN_CELLS_TOLERANCE_TWIN) {
                 free(keep);
                 const double *x = &position[3 * i], *y = &position[3 * j];
                 GSN_CHECK(0, GSN_ERR_INPUT,
@@ -836,7 +842,7 @@ static int assemble(const struct cell_faces *c, int n, const double *volume,
                           "(%g, %g, %g) has area %.17g but its twin %.17g "
                           "(%.3g of V^(2/3), tolerance %g)",
                           i, x[0], x[1], x[2], j, y[0], y[1], y[2], a_ij, a_ji,
-                          error, GSN_PRE_TOLERANCE_TWIN);
+                          error, GSN_CELLS_TOLERANCE_TWIN);
             }
             /* stored once: by the side with fewer pieces, else the lower */
             keep[f] = n_ji == 0 || n_ij < n_ji || (n_ij == n_ji && i < j);
@@ -892,7 +898,7 @@ done:
 
 /* ---- driver ------------------------------------------------------------ */
 
-void domains_result_free(struct domain_result *r)
+void gsn_cells_result_free(struct gsn_cells_result *r)
 {
     free(r->volume);
     free(r->centroid);
@@ -938,10 +944,10 @@ static struct worker *worker_create(int tetrahedra, int triangles)
     return w;
 }
 
-static int build_cells(const struct context *ctx, struct domain_result *out,
+static int build_cells(const struct context *ctx, struct gsn_cells_result *out,
                        struct block_output *blocks, int block_count)
 {
-    const struct domain_input *in = ctx->in;
+    const struct gsn_cells_input *in = ctx->in;
     int n = in->particle_count, failed = 0;
     int triangles = ctx->body ? ctx->body->triangle_count : 0;
     int threads = in->threads > 0 ? in->threads : omp_get_max_threads();
@@ -984,7 +990,7 @@ static int build_cells(const struct context *ctx, struct domain_result *out,
 }
 
 static int gather_blocks(const struct context *ctx, struct block_output *blocks,
-                         int block_count, struct domain_result *out)
+                         int block_count, struct gsn_cells_result *out)
 {
     int n = ctx->in->particle_count, rc = GSN_OK;
     long faces = 0, points = 0;
@@ -1044,7 +1050,8 @@ done:
     return rc;
 }
 
-int domains_build(const struct domain_input *in, struct domain_result *out)
+int gsn_cells_build(const struct gsn_cells_input *in,
+                    struct gsn_cells_result *out)
 {
     memset(out, 0, sizeof *out);
     int n = in->particle_count, rc = GSN_OK;
@@ -1120,13 +1127,13 @@ done:
     free(offset);
     free(neighbour);
     if (rc != GSN_OK)
-        domains_result_free(out);
+        gsn_cells_result_free(out);
     return rc;
 }
 
-int domains_model_create(struct domain_result *r, int particle_surface_entries,
-                         int surface_count, int tetrahedron_count,
-                         struct gsn_model *m)
+int gsn_cells_model_create(struct gsn_cells_result *r,
+                           int particle_surface_entries, int surface_count,
+                           int tetrahedron_count, struct gsn_model *m)
 {
     int n = r->particle_count, nf = r->facet_count;
     int points = r->facet_point_offset[nf];
