@@ -27,66 +27,45 @@ int gsn_cells_face_from_label(int label)
                                                : -1 - label;
 }
 
-/* Six times the signed volume of tetrahedron t at positions x. */
-static double tetrahedron_volume6(const double *x, const int *v)
+/* The body's volume at positions x (its tetrahedra are positively
+ * oriented where it was made) and the labels of its faces for the
+ * clipping. A tetrahedron that x turns inside out or flat is an error:
+ * the body would not be the union of the pieces. */
+static int body_of_mesh(const struct gsn_body *body, const double *x,
+                        int *label, double *volume)
 {
-    const double *a = &x[3 * v[0]];
-    double e[3][3];
-    for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < 3; ++k)
-            e[i][k] = x[3 * v[i + 1] + k] - a[k];
-    return e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-           e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-           e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-}
-
-/* The tetrahedra's volume at positions x, each with the orientation it has
- * at m's own positions (a mesh may list its nodes either way round), and the
- * labels of their faces for the clipping. A tetrahedron that x turns inside
- * out or flat is an error: the body would not be the union of the pieces. */
-static int body_of_mesh(const struct gsn_model *m, const double *x, int *label,
-                        double *volume)
-{
-    double total = 0.0, smallest = INFINITY;
-    int worst = -1;
-    int nt = m->tetrahedron_count;
+    double ratio = 0.0, total = 0.0;
+    int nt = body->tetrahedron_count;
+    int worst = gsn_body_worst(body, x, &ratio);
     for (int t = 0; t < nt; ++t) {
-        const int *v4 = &m->tetrahedra[4 * t];
-        double sign = tetrahedron_volume6(m->position, v4) < 0.0 ? -1.0 : 1.0;
-        double v = sign * tetrahedron_volume6(x, v4) / 6.0;
-        total += v;
-        if (v < smallest) {
-            smallest = v;
-            worst = t;
-        }
+        total += gsn_body_tetrahedron_volume(x, &body->tetrahedra[4 * t]);
         for (int k = 0; k < 4; ++k)
-            label[4 * t + k] =
-                gsn_cells_label_from_face(m->tetrahedron_face[4 * t + k]);
+            label[4 * t + k] = gsn_cells_label_from_face(body->face[4 * t + k]);
     }
     if (nt > 0) {
-        const double *a = &x[3 * m->tetrahedra[4 * worst]];
-        GSN_CHECK(smallest > 1e-12 * total / nt, GSN_ERR_NUMERICAL,
+        const double *a = &x[3 * body->tetrahedra[4 * worst]];
+        GSN_CHECK(ratio > 1e-12, GSN_ERR_NUMERICAL,
                   "tetrahedron %d of the body (first node %d at %g, %g, %g) "
-                  "is %s: %.3g m^3 against %.3g m^3 on average",
-                  worst, m->tetrahedra[4 * worst], a[0], a[1], a[2],
-                  smallest < 0.0 ? "turned inside out" : "flat", smallest,
-                  total / nt);
+                  "is %s: %.3g of the mean volume",
+                  worst, body->tetrahedra[4 * worst], a[0], a[1], a[2],
+                  ratio < 0.0 ? "turned inside out" : "flat", ratio);
     }
     *volume = total;
     return GSN_OK;
 }
 
-/* Area of every physical surface: its boundary triangles at positions x. */
-static void surface_areas(const struct gsn_model *m, const double *x,
-                          double *area)
+/* Area of every physical surface: the body's boundary triangles at
+ * positions x. */
+static void surface_areas(const struct gsn_body *body, int surface_count,
+                          const double *x, double *area)
 {
-    for (int s = 0; s < m->surface_count; ++s)
+    for (int s = 0; s < surface_count; ++s)
         area[s] = 0.0;
-    for (int f = 0; f < 4 * m->tetrahedron_count; ++f) {
-        int s = m->tetrahedron_face[f];
+    for (int f = 0; f < 4 * body->tetrahedron_count; ++f) {
+        int s = body->face[f];
         if (s < 0)
             continue;
-        const int *v = &m->tetrahedra[4 * (f / 4)];
+        const int *v = &body->tetrahedra[4 * (f / 4)];
         const int *o = tetrahedron_face_vertex[f % 4];
         const double *a = &x[3 * v[o[0]]], *b = &x[3 * v[o[1]]],
                      *c = &x[3 * v[o[2]]];
@@ -102,13 +81,18 @@ static void surface_areas(const struct gsn_model *m, const double *x,
 }
 
 int gsn_cells_model_at(const struct gsn_model *m, const double *position,
+                       const struct gsn_body *body,
                        const struct gsn_cells_options *options,
                        struct gsn_model *out, struct gsn_cells_report *report)
 {
     memset(out, 0, sizeof *out);
     const double *x = position ? position : m->position;
-    int n = m->particle_count, nt = m->tetrahedron_count;
-    GSN_CHECK(nt > 0 && m->tetrahedron_face, GSN_ERR_INPUT,
+    const struct gsn_body own = {m->tetrahedron_count, m->tetrahedra,
+                                 m->tetrahedron_face};
+    if (!body)
+        body = &own;
+    int n = m->particle_count, nt = body->tetrahedron_count;
+    GSN_CHECK(nt > 0 && body->face, GSN_ERR_INPUT,
               "the model has no tetrahedra to clip its cells to");
     struct gsn_cells_input in;
     memset(&in, 0, sizeof in);
@@ -118,7 +102,7 @@ int gsn_cells_model_at(const struct gsn_model *m, const double *position,
     GSN_CHECK(label, GSN_ERR_MEMORY, "cannot allocate %d face labels", 4 * nt);
     double volume = 0.0;
     int rc = GSN_OK;
-    GSN_CALL_GOTO(body_of_mesh(m, x, label, &volume), rc, done);
+    GSN_CALL_GOTO(body_of_mesh(body, x, label, &volume), rc, done);
     in.particle_count = n;
     in.position = x;
     for (int k = 0; k < 3; ++k) {
@@ -143,7 +127,7 @@ int gsn_cells_model_at(const struct gsn_model *m, const double *position,
     for (int s = 0; s < 6; ++s)
         in.box_label[s] = GSN_CELLS_LABEL_HULL;
     in.body.tetrahedron_count = nt;
-    in.body.tetrahedra = m->tetrahedra;
+    in.body.tetrahedra = body->tetrahedra;
     in.body.face_label = label;
     in.facet_points = options->facet_points;
     in.threads = options->threads;
@@ -162,10 +146,9 @@ int gsn_cells_model_at(const struct gsn_model *m, const double *position,
            sizeof *m->surface_name * (size_t)m->surface_count);
     memcpy(out->surface_tag, m->surface_tag,
            sizeof(int) * (size_t)m->surface_count);
-    memcpy(out->tetrahedra, m->tetrahedra, sizeof(int) * 4 * (size_t)nt);
-    memcpy(out->tetrahedron_face, m->tetrahedron_face,
-           sizeof(int) * 4 * (size_t)nt);
-    surface_areas(m, x, out->surface_area);
+    memcpy(out->tetrahedra, body->tetrahedra, sizeof(int) * 4 * (size_t)nt);
+    memcpy(out->tetrahedron_face, body->face, sizeof(int) * 4 * (size_t)nt);
+    surface_areas(body, m->surface_count, x, out->surface_area);
     struct gsn_cells_report check;
     memset(&check, 0, sizeof check);
     check.twin_error = r.twin_error;

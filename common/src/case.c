@@ -590,16 +590,19 @@ static int read_material(struct reader *r, const yaml_node_t *root,
     return GSN_OK;
 }
 
-static int read_vector3(struct reader *r, const yaml_node_t *node,
-                        const char *name, int allow_null, int present[3],
-                        double value[3])
+/* A list of count numbers (or nulls where allow_null), shown in messages
+ * as shape, e.g. "[x, y, z]". */
+static int read_vector(struct reader *r, const yaml_node_t *node,
+                       const char *name, int count, const char *shape,
+                       int allow_null, int *present, double *value)
 {
-    int count = sequence_length(node);
-    GSN_CHECK(count == 3, GSN_ERR_INPUT,
-              "%s:%d: '%s' must be a list of 3 %s [x, y, z], got %s", r->path,
-              node_line(node), name, allow_null ? "numbers or null" : "numbers",
+    int length = sequence_length(node);
+    GSN_CHECK(length == count, GSN_ERR_INPUT,
+              "%s:%d: '%s' must be a list of %d %s %s, got %s", r->path,
+              node_line(node), name, count,
+              allow_null ? "numbers or null" : "numbers", shape,
               node_kind(r, node));
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < count; ++k) {
         yaml_node_t *item = node_get(r, node->data.sequence.items.start[k]);
         char item_name[128];
         snprintf(item_name, sizeof item_name, "%s[%d]", name, k);
@@ -611,6 +614,14 @@ static int read_vector3(struct reader *r, const yaml_node_t *node,
         present[k] = 1;
     }
     return GSN_OK;
+}
+
+static int read_vector3(struct reader *r, const yaml_node_t *node,
+                        const char *name, int allow_null, int present[3],
+                        double value[3])
+{
+    return read_vector(r, node, name, 3, "[x, y, z]", allow_null, present,
+                       value);
 }
 
 static int read_boundary_entry(struct reader *r, const yaml_node_t *key,
@@ -775,6 +786,66 @@ static int read_kinematics(struct reader *r, const yaml_node_t *root,
     return GSN_OK;
 }
 
+/* reference_update: off, or {strain, volume: [min, max], every}
+ * (docs/solver.md, "Large deformation"); on by default where it applies:
+ * large kinematics with nodal integration. */
+static int read_reference_update(struct reader *r, const yaml_node_t *root,
+                                 struct gsn_case *c)
+{
+    static const char *const keys[] = {"strain", "volume", "every", NULL};
+    static const char *const words[] = {"off", "on", NULL};
+    c->reference_update =
+        !c->small_strain && c->integration != GSN_INTEGRATION_GAUSS;
+    yaml_node_t *node = mapping_find(r, root, "reference_update");
+    if (!node)
+        return GSN_OK;
+    c->reference_update_line = node_line(node);
+    int index = 1;
+    if (node->type == YAML_SCALAR_NODE)
+        GSN_CALL(parse_word(r, node, "reference_update", words, &index));
+    else {
+        GSN_CALL(check_keys(r, node, keys, "reference_update"));
+        int line = node_line(node);
+        GSN_CALL(read_number(r, node, "reference_update", "strain",
+                             &c->reference_strain, &line));
+        GSN_CHECK(c->reference_strain > 0.0, GSN_ERR_INPUT,
+                  "%s:%d: 'reference_update.strain' (the strain since the "
+                  "last update that triggers one) must be positive, got %g",
+                  r->path, line, c->reference_strain);
+        yaml_node_t *volume = mapping_find(r, node, "volume");
+        if (volume) {
+            int present[2] = {0, 0};
+            GSN_CALL(read_vector(r, volume, "reference_update.volume", 2,
+                                 "[min, max]", 0, present,
+                                 c->reference_volume));
+            GSN_CHECK(present[0] && present[1] &&
+                          c->reference_volume[0] > 0.0 &&
+                          c->reference_volume[0] < 1.0 &&
+                          c->reference_volume[1] > 1.0,
+                      GSN_ERR_INPUT,
+                      "%s:%d: 'reference_update.volume' must be [min, max] "
+                      "with 0 < min < 1 < max (volume ratios since the last "
+                      "update), got [%g, %g]",
+                      r->path, node_line(volume), c->reference_volume[0],
+                      c->reference_volume[1]);
+        }
+        GSN_CALL(read_positive(r, node, "reference_update", "every", "s", 0,
+                               &c->reference_every));
+    }
+    GSN_CHECK(index == 0 || !c->small_strain, GSN_ERR_INPUT,
+              "%s:%d: 'reference_update' needs 'kinematics: large': with "
+              "small kinematics the body stays on its reference "
+              "configuration",
+              r->path, c->reference_update_line);
+    GSN_CHECK(index == 0 || c->integration != GSN_INTEGRATION_GAUSS,
+              GSN_ERR_INPUT,
+              "%s:%d: 'reference_update' works with nodal integration (scni, "
+              "dni), not gauss: use 'reference_update: off'",
+              r->path, c->reference_update_line);
+    c->reference_update = index == 1;
+    return GSN_OK;
+}
+
 static int read_output(struct reader *r, const yaml_node_t *root,
                        struct gsn_case *c)
 {
@@ -820,14 +891,17 @@ static void case_set_defaults(struct gsn_case *c)
     c->time_step_auto = 1;
     c->time_step_safety = GSN_DEFAULT_TIME_STEP_SAFETY;
     c->output_fields = GSN_DEFAULT_OUTPUT_FIELDS;
+    c->reference_strain = GSN_DEFAULT_REFERENCE_STRAIN;
+    c->reference_volume[0] = GSN_DEFAULT_REFERENCE_VOLUME_MIN;
+    c->reference_volume[1] = GSN_DEFAULT_REFERENCE_VOLUME_MAX;
 }
 
 static int read_document(struct reader *r, struct gsn_case *c)
 {
-    static const char *const keys[] = {"geometry",    "particles", "kernel",
-                                       "integration", "material",  "gravity",
-                                       "boundary",    "time",      "damping",
-                                       "kinematics",  "output",    NULL};
+    static const char *const keys[] = {
+        "geometry", "particles",        "kernel", "integration", "material",
+        "gravity",  "boundary",         "time",   "damping",     "kinematics",
+        "output",   "reference_update", NULL};
     yaml_node_t *root = yaml_document_get_root_node(&r->document);
     GSN_CHECK(root != NULL, GSN_ERR_INPUT,
               "%s:1: the case file is empty; expected a mapping with "
@@ -844,6 +918,7 @@ static int read_document(struct reader *r, struct gsn_case *c)
     GSN_CALL(read_time(r, root, c));
     GSN_CALL(read_damping(r, root, c));
     GSN_CALL(read_kinematics(r, root, c));
+    GSN_CALL(read_reference_update(r, root, c));
     GSN_CALL(read_output(r, root, c));
     return GSN_OK;
 }
@@ -1039,6 +1114,15 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
     fprintf(out, ", ramp: %.17g}\n", c->time_ramp);
     fprintf(out, "damping: {local: %.17g}\n", c->damping_local);
     fprintf(out, "kinematics: %s\n", c->small_strain ? "small" : "large");
+    if (c->reference_update) {
+        fprintf(out, "reference_update: {strain: %.17g, volume: [%.17g, %.17g]",
+                c->reference_strain, c->reference_volume[0],
+                c->reference_volume[1]);
+        if (c->reference_every > 0.0)
+            fprintf(out, ", every: %.17g", c->reference_every);
+        fprintf(out, "}\n");
+    } else
+        fprintf(out, "reference_update: off\n");
     fputs("output: {", out);
     if (c->output_every > 0.0)
         fprintf(out, "every: %.17g, ", c->output_every);

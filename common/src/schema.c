@@ -13,3 +13,7 @@ const struct gsn_dataset_info gsn_frame_fields[GSN_FRAME_FIELD_COUNT] = {
 const struct gsn_dataset_info
     gsn_checkpoint_datasets[GSN_CHECKPOINT_DATASET_COUNT] = {
         GSN_CHECKPOINT_DATASETS(GSN_DATASET_ROW)};
+
+const struct gsn_dataset_info
+    gsn_checkpoint_reference_datasets[GSN_CHECKPOINT_REFERENCE_DATASET_COUNT] =
+        {GSN_CHECKPOINT_REFERENCE_DATASETS(GSN_DATASET_ROW)};

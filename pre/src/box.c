@@ -25,6 +25,42 @@ static int box_faces_touched(const double x[3], const double lo[3],
     return mask;
 }
 
+/* The Delaunay tetrahedra of the points when their hull is the box (else
+ * none), each hull face named after the box face it lies on. */
+static void box_body(const double *points, int n, const double lo[3],
+                     const double hi[3], double tolerance,
+                     struct gsn_body *body)
+{
+    static const int face_vertex[4][3] = {
+        {1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+    if (gsn_body_of_points(points, n, body) != GSN_OK) {
+        gsn_error_clear();
+        return;
+    }
+    double volume = 0.0,
+           box = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+    for (int t = 0; t < body->tetrahedron_count; ++t)
+        volume += gsn_body_tetrahedron_volume(points, &body->tetrahedra[4 * t]);
+    int fills = fabs(volume - box) <= 1e-12 * box;
+    for (int f = 0; fills && f < 4 * body->tetrahedron_count; ++f) {
+        if (body->face[f] == GSN_MODEL_FACE_INTERNAL)
+            continue;
+        const int *v = &body->tetrahedra[4 * (f / 4)];
+        int mask = 63;
+        for (int j = 0; j < 3; ++j)
+            mask &= box_faces_touched(&points[3 * v[face_vertex[f % 4][j]]], lo,
+                                      hi, tolerance);
+        for (int s = 0; s < 6; ++s)
+            if ((mask >> s) & 1) {
+                body->face[f] = s;
+                break;
+            }
+        fills = body->face[f] >= 0;
+    }
+    if (!fills)
+        gsn_body_free(body);
+}
+
 int gsn_pre_domains_box_ex(const double *points, int n, const double lo[3],
                            const double hi[3], int facet_points, int threads,
                            struct gsn_model *m, struct gsn_cells_report *report)
@@ -55,7 +91,22 @@ int gsn_pre_domains_box_ex(const double *points, int n, const double lo[3],
         for (int s = 0; s < 6; ++s)
             entries += (mask >> s) & 1;
     }
-    GSN_CALL_GOTO(gsn_cells_model_create(&r, entries, 6, 0, m), rc, fail);
+    /* The Delaunay tetrahedra of the points, where they fill the box (the
+     * box's corners and faces carry particles), so the body can be followed
+     * through reference updates; their hull faces take the box face they
+     * lie on. */
+    struct gsn_body body;
+    memset(&body, 0, sizeof body);
+    box_body(points, n, lo, hi, tolerance, &body);
+    rc = gsn_cells_model_create(&r, entries, 6, body.tetrahedron_count, m);
+    if (rc == GSN_OK) {
+        memcpy(m->tetrahedra, body.tetrahedra,
+               sizeof(int) * 4 * (size_t)body.tetrahedron_count);
+        memcpy(m->tetrahedron_face, body.face,
+               sizeof(int) * 4 * (size_t)body.tetrahedron_count);
+    }
+    gsn_body_free(&body);
+    GSN_CALL_GOTO(rc, rc, fail);
     memcpy(m->position, points, sizeof(double) * 3 * (size_t)n);
     m->particle_surface_offset[0] = 0;
     int e = 0;

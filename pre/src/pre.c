@@ -732,7 +732,7 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
                                       options->tetrahedra_only};
     struct gsn_cells_report check;
     memset(&check, 0, sizeof check);
-    GSN_CALL_GOTO(gsn_cells_model_at(&bare, NULL, &cells, &m, &check), rc,
+    GSN_CALL_GOTO(gsn_cells_model_at(&bare, NULL, NULL, &cells, &m, &check), rc,
                   done);
     double t1 = omp_get_wtime();
     GSN_CALL_GOTO(gsn_model_write(path, &m, c), rc, done);

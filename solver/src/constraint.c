@@ -54,6 +54,8 @@ struct gsn_constraints {
     int particle_count;
     int surface_count;
     double ramp;       /* s, time.ramp */
+    double epoch;      /* s: displacements are prescribed from then on (the
+                          time of the last reference update) */
     int *surface_mask; /* per model surface: constrained components */
     int *entry_of;     /* particles x 3: the boundary entry whose
                           prescription holds the component, or -1 */
@@ -452,6 +454,11 @@ double gsn_ramp_factor(double ramp, enum gsn_constraint_field kind, double t)
                                           : 0.5 * pi / ramp * sin(s);
 }
 
+void gsn_constraints_set_epoch(struct gsn_constraints *constraints, double time)
+{
+    constraints->epoch = time;
+}
+
 int gsn_constraints_ramping(const struct gsn_constraints *constraints,
                             double time)
 {
@@ -484,7 +491,9 @@ int gsn_constraints_apply(struct gsn_constraints *constraints,
      * any thread count. */
     GSN_CHECK(values->row_count == constraints->particle_count,
               GSN_ERR_INTERNAL, "shape values are not one row per particle");
-    const double factor = gsn_ramp_factor(constraints->ramp, kind, time);
+    double factor = gsn_ramp_factor(constraints->ramp, kind, time);
+    if (kind == GSN_FIELD_DISPLACEMENT)
+        factor -= gsn_ramp_factor(constraints->ramp, kind, constraints->epoch);
     int work = 0;
     for (int c = 0; c < 3; ++c)
         work += constraints->component[c].count;

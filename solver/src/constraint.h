@@ -41,6 +41,12 @@ enum gsn_constraint_field {
  * displacement t/2 - ramp/(2 pi) sin(pi t/ramp), then t - ramp/2. */
 double gsn_ramp_factor(double ramp, enum gsn_constraint_field kind, double t);
 
+/* Displacements are prescribed from `time` on (s): the value at t is
+ * v (D(t) - D(time)) with D the displacement factor of gsn_ramp_factor, so
+ * a reference configuration taken at `time` holds d = 0 (issue 15). */
+void gsn_constraints_set_epoch(struct gsn_constraints *constraints,
+                               double time);
+
 /* 1 while the prescribed velocities still rise (t < time.ramp): their
  * accelerations are then nonzero, so d and v are corrected every step. */
 int gsn_constraints_ramping(const struct gsn_constraints *constraints,

@@ -84,7 +84,11 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
                         e->piola,
                         e->point_energy,
                         e->thread_work,
-                        e->damping_force};
+                        e->damping_force,
+                        e->point_mass,
+                        e->reference_offset,
+                        e->reference_gradient,
+                        e->block_distortion};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         free(arrays[i]);
     free(e->point_failed);
@@ -102,6 +106,7 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     free(e->point_owner);
     free(e->step_partial);
     free(e->constrained);
+    free(e->point_dead);
     free(e);
     *handle = NULL;
 }
@@ -236,16 +241,19 @@ void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
     }
 }
 
-/* m_I = rho0 sum_p Psi_I(x_p) w_p over the main points (eq. (28)): the
- * nodal points (x_p = X_L, w_p = V_L; Psi from particle_values) or the
- * Gauss points (Psi from their own rows); f_ext_I = m_I g. By the
- * partition of unity the masses add up to rho0 sum_p w_p. */
-static int build_mass(struct gsn_explicit *e, const struct gsn_case *c)
+/* m_I = sum_p Psi_I(x_p) m_p over the main points (eq. (28) with the mass
+ * m_p = rho0 w_p that point p carries from the first reference
+ * configuration): the nodal points (x_p = X_L; Psi from particle_values)
+ * or the Gauss points (Psi from their own rows); f_ext_I = m_I g. By the
+ * partition of unity the masses add up to sum_p m_p, the body's mass, on
+ * every reference configuration. */
+static int build_mass(struct gsn_explicit *e)
 {
     const struct gsn_quadrature *q = e->quadrature;
     GSN_CHECK(q->particle_values.row_count == e->particle_count &&
                   q->particle_values.value,
               GSN_ERR_INTERNAL, "shape values are not one row per particle");
+    memset(e->mass, 0, sizeof(double) * (size_t)e->particle_count);
     for (int p = 0; p < e->main_point_count; ++p) {
         int particle = q->point_particle[p];
         const struct gsn_shape_rows *values =
@@ -253,10 +261,8 @@ static int build_mass(struct gsn_explicit *e, const struct gsn_case *c)
         int row = particle >= 0 ? particle : p;
         GSN_CHECK(values->value, GSN_ERR_INTERNAL,
                   "no shape values at integration point %d", p);
-        double volume = q->point_weight[p];
         for (int k = values->offset[row]; k < values->offset[row + 1]; ++k)
-            e->mass[values->index[k]] +=
-                c->material.density * values->value[k] * volume;
+            e->mass[values->index[k]] += values->value[k] * e->point_mass[p];
     }
     for (int i = 0; i < e->particle_count; ++i) {
         GSN_CHECK(e->mass[i] > 0.0 && isfinite(e->mass[i]), GSN_ERR_NUMERICAL,
@@ -266,7 +272,7 @@ static int build_mass(struct gsn_explicit *e, const struct gsn_case *c)
                   i, q->rk->position[3 * i], q->rk->position[3 * i + 1],
                   q->rk->position[3 * i + 2], e->mass[i]);
         for (int k = 0; k < 3; ++k)
-            e->f_ext[3 * i + k] = e->mass[i] * c->gravity[k];
+            e->f_ext[3 * i + k] = e->mass[i] * e->gravity[k];
     }
     return GSN_OK;
 }
@@ -380,11 +386,13 @@ int gsn_explicit_create(const struct gsn_model *m,
     e->state_size = material->ops->state_size;
     e->plastic_offset =
         gsn_material_state_offset(material->ops, "equivalent_plastic_strain");
+    e->damage_offset = gsn_material_state_offset(material->ops, "damage");
     e->bulk_modulus = c->material.bulk_modulus;
     e->shear_modulus = c->material.shear_modulus;
     e->dt = dt;
     e->damping_local = c->damping_local;
     e->small_strain = c->small_strain;
+    memcpy(e->gravity, c->gravity, sizeof e->gravity);
     e->thread_count = omp_get_max_threads();
     size_t n3 = 3 * (size_t)e->particle_count;
     size_t points = (size_t)e->point_count;
@@ -411,6 +419,10 @@ int gsn_explicit_create(const struct gsn_model *m,
         {(void **)&e->point_energy, points, sizeof(double)},
         {(void **)&e->point_failed, points, sizeof(int)},
         {(void **)&e->damping_force, n3, sizeof(double)},
+        {(void **)&e->point_mass, main, sizeof(double)},
+        {(void **)&e->reference_offset, n3, sizeof(double)},
+        {(void **)&e->reference_gradient, 9 * main, sizeof(double)},
+        {(void **)&e->point_dead, main, sizeof(int)},
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         GSN_CALL_GOTO(
@@ -422,6 +434,10 @@ int gsn_explicit_create(const struct gsn_model *m,
                                               ? BLOCK_POINTS_STABILIZED
                                               : BLOCK_POINTS,
                                           &e->blocks),
+                  rc, fail);
+    GSN_CALL_GOTO(alloc_array((void **)&e->block_distortion,
+                              4 * (size_t)e->blocks->block_count,
+                              sizeof(double)),
                   rc, fail);
     GSN_CALL_GOTO(
         alloc_array((void **)&e->slot_force,
@@ -451,8 +467,13 @@ int gsn_explicit_create(const struct gsn_model *m,
                 if (gsn_constraints_is_constrained(constraints, i, k))
                     e->constrained[i] |= (unsigned char)(1 << k);
     }
+    for (size_t p = 0; p < main; ++p) {
+        e->point_mass[p] = c->material.density * quadrature->point_weight[p];
+        for (int a = 0; a < 9; ++a)
+            e->reference_gradient[9 * p + a] = a % 4 == 0 ? 1.0 : 0.0;
+    }
     GSN_CALL_GOTO(build_boundary_masks(e), rc, fail);
-    GSN_CALL_GOTO(build_mass(e, c), rc, fail);
+    GSN_CALL_GOTO(build_mass(e), rc, fail);
     GSN_CALL_GOTO(build_domains(e), rc, fail);
     GSN_CALL_GOTO(gsn_material_initialize(material, main, e->stress, e->state),
                   rc, fail);
@@ -615,19 +636,54 @@ static double elastic_share(const double deps[6], double plastic_increment)
     return share < 0.0 ? 0.0 : share > 1.0 ? 1.0 : share;
 }
 
+/* |E| = |F^T F - I| / 2 (Frobenius): the strain of F without its
+ * rotation. */
+static double green_strain_norm(const double F[9])
+{
+    double sum = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j) {
+            double c = F[i] * F[j] + F[3 + i] * F[3 + j] + F[6 + i] * F[6 + j];
+            c -= i == j ? 1.0 : 0.0;
+            sum += (i == j ? 1.0 : 2.0) * c * c;
+        }
+    return 0.5 * sqrt(sum);
+}
+
+/* A point that fails (allow_failure): it carries no stress from now on and
+ * its F stays as it was; its mass stays with the particles (issue 15,
+ * point 2). */
+static void point_fail(struct gsn_explicit *e, int p)
+{
+    int S = e->blocks->subcells;
+    e->point_dead[p] = 1;
+    memset(&e->stress[6 * (size_t)p], 0, 6 * sizeof(double));
+    for (int s = 0; s < S; ++s)
+        memset(&e->stress[6 * ((size_t)e->main_point_count + (size_t)S * p +
+                               (size_t)s)],
+               0, 6 * sizeof(double));
+}
+
 /* Nodal points [p0, p1) with their increments dH (9 each, from p0):
  * F_{n+1} = I + H + dH, the incremental gradient on the mid-step
  * configuration G = dH (I + H + dH/2)^-1, the objective update with the
  * material (Fig. 3), the work sigma : d eps, P, and each point's elastic
- * share of the step (share, from p0) for its stabilization points. */
+ * share of the step (share, from p0) for its stabilization points. A
+ * failed point (point_dead) takes no increment and has no stress; a point
+ * that turns inside out fails when allow_failure is set, else the step
+ * fails. distortion gets the block's largest |E| of F_{n+1}, its point and
+ * the extremes of det F_{n+1} over the live points. */
 static int main_chunk(struct gsn_explicit *e, int p0, int p1,
-                      const double *dH_block, double *work, double *share)
+                      const double *dH_block, double *work, double *share,
+                      double distortion[4])
 {
     const double *w = e->quadrature->point_weight;
     double *G = work, *deps = G + 9 * CHUNK, *old = deps + 6 * CHUNK;
     double *Hnew = old + 6 * CHUNK, *Jmid = Hnew + 9 * CHUNK;
     double *old_plastic = Jmid + CHUNK;
     int failed = 0;
+    double strain_max = 0.0, jacobian_min = INFINITY, jacobian_max = 0.0;
+    int strain_point = p0;
     for (int p = p0; p < p1; ++p) {
         int b = p - p0;
         const double *H = &e->displacement_gradient[9 * p];
@@ -639,7 +695,9 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
         }
         double J1 = gsn_matrix_determinant(F1);
         int admissible;
-        if (e->small_strain) {
+        if (e->point_dead[p]) {
+            admissible = 1;
+        } else if (e->small_strain) {
             /* Small strain: G = sym dH, no rotation, the reference volume;
              * no volume to invert, only a non-number fails. */
             for (int i = 0; i < 3; ++i)
@@ -657,16 +715,41 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
             if (admissible)
                 gsn_matrix_multiply(dH, Fmid_inv, &G[9 * b]);
         }
-        if (!admissible) {
+        if (!admissible && e->allow_failure && isfinite(J1))
+            point_fail(e, p);
+        else if (!admissible) {
             e->point_failed[p] = 1;
             failed = 1;
             continue;
+        }
+        if (e->point_dead[p]) {
+            memset(&G[9 * b], 0, 9 * sizeof(double));
+            Jmid[b] = 1.0;
+        } else {
+            /* the strain as the stress sees it: a damaged point's
+             * distortion matters in proportion to its stiffness */
+            double stiffness = e->damage_offset < 0
+                                   ? 1.0
+                                   : 1.0 - e->state[(size_t)e->state_size * p +
+                                                    e->damage_offset];
+            double strain = stiffness * green_strain_norm(F1);
+            double volume = exp(stiffness * log(J1));
+            if (strain > strain_max) {
+                strain_max = strain;
+                strain_point = p;
+            }
+            jacobian_min = fmin(jacobian_min, volume);
+            jacobian_max = fmax(jacobian_max, volume);
         }
         memcpy(&old[6 * b], &e->stress[6 * p], 6 * sizeof(double));
         if (e->plastic_offset >= 0)
             old_plastic[b] =
                 e->state[(size_t)e->state_size * p + e->plastic_offset];
     }
+    distortion[0] = strain_max;
+    distortion[1] = jacobian_min;
+    distortion[2] = jacobian_max;
+    distortion[3] = strain_point;
     if (failed)
         return GSN_ERR_NUMERICAL;
     int rc =
@@ -679,6 +762,13 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
     }
     for (int p = p0; p < p1; ++p) {
         int b = p - p0;
+        if (e->point_dead[p]) {
+            memset(&e->stress[6 * p], 0, 6 * sizeof(double));
+            memset(&e->piola[9 * p], 0, 9 * sizeof(double));
+            e->point_energy[p] = 0.0;
+            share[b] = 0.0;
+            continue;
+        }
         double mean[6], F1[9];
         for (int a = 0; a < 6; ++a)
             mean[a] = 0.5 * (old[6 * b + a] + e->stress[6 * p + a]);
@@ -808,12 +898,13 @@ static int block_step(struct gsn_explicit *e, int k)
     for (int L = p0; L < p1; ++L)
         row_gradient(b, gsn_point_blocks_main_row(b, k, L), u4,
                      &dH[9 * (L - p0)]);
-    if (main_chunk(e, p0, p1, dH, work, share) != GSN_OK)
+    if (main_chunk(e, p0, p1, dH, work, share,
+                   &e->block_distortion[4 * (size_t)k]) != GSN_OK)
         return GSN_ERR_NUMERICAL;
     memcpy(fold, &e->piola[9 * (size_t)p0],
            sizeof(double) * 9 * (size_t)(p1 - p0));
     for (int L = p0; L < p1; ++L)
-        for (int s = 0; s < S; ++s)
+        for (int s = 0; s < S && !e->point_dead[L]; ++s)
             stabilization_point(e, k, L, s, u4, &dH[9 * (L - p0)],
                                 share[L - p0], &fold[9 * (L - p0)], f4);
     for (int L = p0; L < p1; ++L)
@@ -898,6 +989,9 @@ static int report_failure(const struct gsn_explicit *e, const char *what)
 int gsn_explicit_refresh(struct gsn_explicit *e)
 {
     const double *w = e->quadrature->point_weight;
+    e->dead_count = 0;
+    for (int p = 0; p < e->main_point_count; ++p)
+        e->dead_count += e->point_dead[p];
 #pragma omp parallel for if (parallel_worth(e->point_count))
     for (int p = 0; p < e->point_count; ++p) {
         double *P = &e->piola[9 * p];
@@ -917,6 +1011,31 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
         e->previous_external[i] =
             e->f_ext[i] + e->reaction[i] + e->boundary_force[i];
     return GSN_OK;
+}
+
+/* The step's distortion over the blocks (explicit.h) and the count of
+ * failed points. */
+static void gather_distortion(struct gsn_explicit *e)
+{
+    e->distortion_strain = 0.0;
+    e->distortion_jacobian_min = INFINITY;
+    e->distortion_jacobian_max = 0.0;
+    e->distortion_point = 0;
+    for (int k = 0; k < e->blocks->block_count; ++k) {
+        const double *d = &e->block_distortion[4 * (size_t)k];
+        if (d[0] > e->distortion_strain) {
+            e->distortion_strain = d[0];
+            e->distortion_point = (int)d[3];
+        }
+        e->distortion_jacobian_min = fmin(e->distortion_jacobian_min, d[1]);
+        e->distortion_jacobian_max = fmax(e->distortion_jacobian_max, d[2]);
+    }
+    if (!e->allow_failure)
+        return;
+    int dead = 0;
+    for (int p = 0; p < e->main_point_count; ++p)
+        dead += e->point_dead[p];
+    e->dead_count = dead;
 }
 
 int gsn_explicit_update_stress(struct gsn_explicit *e)
@@ -942,6 +1061,7 @@ int gsn_explicit_update_stress(struct gsn_explicit *e)
         GSN_CHECK(0, GSN_ERR_NUMERICAL, "step %ld: the stress update failed",
                   e->step + 1);
     }
+    gather_distortion(e);
     return GSN_OK;
 }
 
@@ -1249,4 +1369,197 @@ void gsn_explicit_particle_state(const struct gsn_explicit *e, int offset,
                                  double *out)
 {
     domain_mean(e, e->state + offset, e->state_size, 1, out);
+}
+
+int gsn_explicit_set_point_mass(struct gsn_explicit *e, const double *mass)
+{
+    memcpy(e->point_mass, mass, sizeof(double) * (size_t)e->main_point_count);
+    return build_mass(e);
+}
+
+void gsn_explicit_particle_displacement(const struct gsn_explicit *e,
+                                        double *out)
+{
+    gsn_explicit_particle_field(e, e->displacement, out);
+    for (size_t i = 0; i < 3 * (size_t)e->particle_count; ++i)
+        out[i] += e->reference_offset[i];
+}
+
+/* The forces of block k from the present stress alone (no increment, no
+ * material): the nodal points' P (piola, from gsn_explicit_refresh) and
+ * the stabilization points' sigma w, folded and scattered as in
+ * block_step. */
+static void block_forces(struct gsn_explicit *e, int k)
+{
+    const struct gsn_point_blocks *b = e->blocks;
+    const double *w = e->quadrature->point_weight;
+    const int S = b->subcells;
+    const int p0 = b->block_point[k], p1 = b->block_point[k + 1];
+    const int slots = b->block_slot[k + 1] - b->block_slot[k];
+    double *f4 = block_work(e) + 4 * (size_t)b->max_block_slots;
+    double *fold = f4 + 4 * (size_t)b->max_block_slots;
+    memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
+    memcpy(fold, &e->piola[9 * (size_t)p0],
+           sizeof(double) * 9 * (size_t)(p1 - p0));
+    for (int L = p0; L < p1; ++L)
+        for (int s = 0; s < S && !e->point_dead[L]; ++s) {
+            int p = e->main_point_count + S * L + s;
+            int r = gsn_point_blocks_subcell_row(b, k, L, s);
+            if (b->row_start[r] == b->row_start[r + 1])
+                continue;
+            double P[9];
+            elastic_piola(&e->stress[6 * (size_t)p], w[p], P);
+            row_scatter(b, r, P, f4);
+            for (int a = 0; a < 9; ++a)
+                fold[9 * (L - p0) + a] -= P[a];
+        }
+    for (int L = p0; L < p1; ++L)
+        row_scatter(b, gsn_point_blocks_main_row(b, k, L), &fold[9 * (L - p0)],
+                    f4);
+    block_store(e, k, f4);
+}
+
+int gsn_explicit_settle(struct gsn_explicit *e)
+{
+    const int n = e->particle_count;
+    if (e->constraints) {
+        GSN_CALL(gsn_constraints_apply(
+            e->constraints, &e->quadrature->particle_values, GSN_FIELD_VELOCITY,
+            e->time, e->velocity));
+        GSN_CALL(gsn_constraints_apply(
+            e->constraints, &e->quadrature->particle_values,
+            GSN_FIELD_DISPLACEMENT, e->time, e->displacement));
+    }
+    GSN_CALL(gsn_explicit_refresh(e)); /* P, the boundary term */
+#pragma omp parallel if (parallel_worth(e->point_count))
+    {
+#pragma omp for schedule(dynamic, 2)
+        for (int k = 0; k < e->blocks->block_count; ++k)
+            block_forces(e, k);
+#pragma omp for
+        for (int i = 0; i < n; ++i)
+            gsn_point_blocks_reduce_one(e->blocks, i, e->slot_force,
+                                        &e->f_int[3 * (size_t)i]);
+    }
+    /* no motion: d_{n+1} = d_n, so no work is done below */
+    memcpy(e->previous_displacement, e->displacement,
+           sizeof(double) * 3 * (size_t)n);
+    step_loop(e, n, new_accelerations);
+    if (e->constraints)
+        GSN_CALL(gsn_constraints_apply(
+            e->constraints, &e->quadrature->particle_values,
+            GSN_FIELD_ACCELERATION, e->time, e->new_acceleration));
+    memcpy(e->acceleration, e->new_acceleration,
+           sizeof(double) * 3 * (size_t)n);
+    /* the external force of this state starts the next trapezoid */
+    for (size_t i = 0; i < 3 * (size_t)n; ++i)
+        e->previous_external[i] =
+            e->f_ext[i] + e->reaction[i] + e->boundary_force[i];
+    struct gsn_step_sums sums = step_loop(e, n, reactions_and_energies);
+    e->kinetic_energy = sums.kinetic;
+    return GSN_OK;
+}
+
+/* Jacobi sweeps of gsn_explicit_interpolate: at most this many, to a
+ * residual of INTERPOLATE_TOLERANCE of the values. */
+enum { INTERPOLATE_MAX_ITERATIONS = 500 };
+#define INTERPOLATE_TOLERANCE 1e-13
+
+int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
+                             double *c, int *iterations)
+{
+    const struct gsn_shape_rows *rows = &e->quadrature->particle_values;
+    const int n = e->particle_count;
+    double *next = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
+    GSN_CHECK(next, GSN_ERR_MEMORY, "cannot allocate %d values", 3 * n);
+    double scale = 0.0;
+    for (size_t i = 0; i < 3 * (size_t)n; ++i) {
+        c[i] = values[i];
+        scale = fmax(scale, fabs(values[i]));
+    }
+    int iteration = 0;
+    double residual = INFINITY;
+    for (; iteration < INTERPOLATE_MAX_ITERATIONS; ++iteration) {
+        residual = 0.0;
+#pragma omp parallel for reduction(max : residual) if (parallel_worth(n))
+        for (int J = 0; J < n; ++J) {
+            double sum[3] = {0.0, 0.0, 0.0}, diagonal = 0.0;
+            for (int k = rows->offset[J]; k < rows->offset[J + 1]; ++k) {
+                int I = rows->index[k];
+                for (int a = 0; a < 3; ++a)
+                    sum[a] += rows->value[k] * c[3 * I + a];
+                if (I == J)
+                    diagonal = rows->value[k];
+            }
+            for (int a = 0; a < 3; ++a) {
+                double r = values[3 * J + a] - sum[a];
+                residual = fmax(residual, fabs(r));
+                next[3 * J + a] = c[3 * J + a] + r / diagonal;
+            }
+        }
+        if (residual <= INTERPOLATE_TOLERANCE * scale)
+            break;
+        memcpy(c, next, sizeof(double) * 3 * (size_t)n);
+    }
+    free(next);
+    if (iterations)
+        *iterations = iteration;
+    GSN_CHECK(residual <= INTERPOLATE_TOLERANCE * scale, GSN_ERR_NUMERICAL,
+              "the coefficients of a field at %d particles did not converge "
+              "in %d sweeps (residual %.3g of %.3g)",
+              n, INTERPOLATE_MAX_ITERATIONS, residual, scale);
+    return GSN_OK;
+}
+
+int gsn_explicit_carry_over(struct gsn_explicit *to,
+                            const struct gsn_explicit *from)
+{
+    const int n = from->particle_count, main = from->main_point_count;
+    GSN_CHECK(to->particle_count == n && to->point_count == from->point_count &&
+                  to->main_point_count == main &&
+                  to->state_size == from->state_size &&
+                  from->quadrature->point_particle[0] >= 0,
+              GSN_ERR_INTERNAL,
+              "a reference update needs nodal integration with the same "
+              "points (%d particles, %d and %d points)",
+              n, from->point_count, to->point_count);
+    double *field = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
+    GSN_CHECK(field, GSN_ERR_MEMORY, "cannot allocate %d values", 3 * n);
+    int rc = GSN_OK;
+    /* the velocity of every particle, kept */
+    gsn_explicit_particle_field(from, from->velocity, field);
+    GSN_CALL_GOTO(gsn_explicit_interpolate(to, field, to->velocity,
+                                           &to->interpolation_iterations),
+                  rc, done);
+    memset(to->displacement, 0, sizeof(double) * 3 * (size_t)n);
+    GSN_CALL_GOTO(gsn_explicit_set_point_mass(to, from->point_mass), rc, done);
+    memcpy(to->stress, from->stress,
+           sizeof(double) * 6 * (size_t)from->point_count);
+    memcpy(to->state, from->state,
+           sizeof(double) * (size_t)from->state_size * (size_t)main);
+    memcpy(to->point_dead, from->point_dead, sizeof(int) * (size_t)main);
+    to->dead_count = from->dead_count;
+    for (int p = 0; p < main; ++p) {
+        double F[9];
+        for (int a = 0; a < 9; ++a)
+            F[a] = identity_entry(a) + from->displacement_gradient[9 * p + a];
+        gsn_matrix_multiply(F, &from->reference_gradient[9 * p],
+                            &to->reference_gradient[9 * p]);
+    }
+    memset(to->displacement_gradient, 0,
+           sizeof(double) * 9 * (size_t)to->point_count);
+    to->step = from->step;
+    to->time = from->time;
+    to->dt = from->dt;
+    to->internal_energy = from->internal_energy;
+    to->external_work = from->external_work;
+    to->damping_work = from->damping_work;
+    to->kinetic_energy = from->kinetic_energy;
+    to->allow_failure = from->allow_failure;
+    to->distortion_strain = 0.0;
+    to->distortion_jacobian_min = to->distortion_jacobian_max = 1.0;
+    memcpy(to->phase_seconds, from->phase_seconds, sizeof to->phase_seconds);
+done:
+    free(field);
+    return rc;
 }

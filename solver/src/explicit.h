@@ -141,6 +141,35 @@ struct gsn_explicit {
                                    constraints for the step's loops */
     struct gsn_step_sums *step_partial; /* the sums of each piece of the
                                            step's loops (explicit.c) */
+
+    /* The reference configuration (issue 15). The shape functions, cells
+     * and gradients are built on it; an update builds them again on the
+     * current positions and carries the state over
+     * (gsn_explicit_carry_over). */
+    double gravity[3];          /* m/s^2, f_ext = m g */
+    double *point_mass;         /* main points: the mass each carries, kg
+                                   (rho0 w_p at the first reference; kept
+                                   through updates, so the lumped masses
+                                   always add up to the body's) */
+    double *reference_offset;   /* n x 3: X_ref - X_0, m (0 until an update) */
+    double *reference_gradient; /* main points x 9: F of the reference
+                                   configuration, F = (I + H) F_ref */
+    int allow_failure;          /* 1: a point whose F turns inside out fails
+                                   (no stress from then on) instead of
+                                   stopping the run */
+    int *point_dead;            /* main points: 1 once failed */
+    int dead_count;             /* main points failed so far */
+    int damage_offset;          /* damage in the state, -1 without damage */
+    /* Distortion of the step just done over the live main points, from
+     * F_inc = I + H, each point's weighted by its stiffness 1 - damage (a
+     * damaged point's distortion matters to the stress in proportion to
+     * it): the largest (1 - damage) |E|, E = (F^T F - I) / 2 (Frobenius),
+     * the extremes of (det F_inc)^(1 - damage), and where the largest
+     * strain is. */
+    double distortion_strain, distortion_jacobian_min, distortion_jacobian_max;
+    int distortion_point;
+    double *block_distortion;     /* blocks x 4: the same per block */
+    int interpolation_iterations; /* of the velocity at the last carry-over */
 };
 
 /* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped
@@ -154,6 +183,41 @@ int gsn_explicit_create(const struct gsn_model *m,
 
 /* Frees; NULL-safe, nulls the handle. */
 void gsn_explicit_destroy(struct gsn_explicit **e);
+
+/* Carries the state of `from` onto `to`, a loop built (gsn_explicit_create)
+ * on the current positions of from's particles, X_ref + u(X_ref): the
+ * particles' masses, velocities (the coefficients of `to` that interpolate
+ * from's velocity at every particle, gsn_explicit_interpolate), the stress
+ * and material state of every point, F = (I + H) F_ref as to's F_ref, the
+ * failed points, the clock and the work done; d = 0 and H = 0 on the new
+ * reference. The body force is m g with the carried masses; tractions are
+ * the caller's to add, then gsn_explicit_settle. Nodal integration only
+ * (the points are the particles' own). */
+int gsn_explicit_carry_over(struct gsn_explicit *to,
+                            const struct gsn_explicit *from);
+
+/* Sets the masses the main points carry (kg, one per main point) and
+ * builds the lumped masses and the body force from them. */
+int gsn_explicit_set_point_mass(struct gsn_explicit *e, const double *mass);
+
+/* The forces, accelerations, reactions and kinetic energy of the present
+ * state (stress, d, v) without moving it: after set-up from a state (a
+ * checkpoint or gsn_explicit_carry_over). The prescribed velocities are
+ * imposed on v first. */
+int gsn_explicit_settle(struct gsn_explicit *e);
+
+/* The coefficients c (n x 3) whose field takes the given values (n x 3) at
+ * every particle, sum_I Psi_I(X_J) c_I = values_J, by Jacobi iteration
+ * from c = values (Psi_J(X_J) dominates its row for a support of 1.5 h) to
+ * a residual of 1e-13 of the values; GSN_ERR_NUMERICAL if it does not get
+ * there. *iterations gets the count (may be NULL). */
+int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
+                             double *c, int *iterations);
+
+/* u(X_J) at the particles from the first reference, X_ref - X_0 +
+ * sum_I Psi_I(X_J) d_I (n x 3, m): what frames show. */
+void gsn_explicit_particle_displacement(const struct gsn_explicit *e,
+                                        double *out);
 
 /* Adds a dead-load traction t (Pa, per reference area) on the boundary
  * facets of model surface `surface` to f_ext, integrated with the facet

@@ -16,6 +16,7 @@
 #include "geoscni/solver.h"
 #include "geoscni/tensor.h"
 #include "material.h"
+#include "reference.h"
 
 #include <math.h>
 #include <omp.h>
@@ -61,10 +62,10 @@ struct run {
     char history_path[GSN_PATH_SIZE];
     char case_name[GSN_PATH_SIZE];
     struct gsn_model model;
-    struct gsn_quadrature *quadrature;
     struct gsn_material_model *material;
-    struct gsn_constraints *constraints;
-    struct gsn_explicit *explicit_loop;
+    /* the discretization of the present reference configuration and its
+     * loop (reference.h) */
+    struct gsn_reference *reference;
     struct boundary_set boundary[GSN_MAX_BOUNDARIES];
     struct gsn_frame frame;
     hid_t results;
@@ -79,6 +80,7 @@ struct run {
     double kinetic_ratio;      /* largest KE / W_int since the check began */
     double kinetic_ratio_time; /* s, when it occurred */
     double last_checkpoint;    /* wall-clock time of the last one, s */
+    int body_written; /* the remesh count of the body in the checkpoint */
 };
 
 static double now_seconds(void)
@@ -114,7 +116,7 @@ static int build_boundary_sets(struct run *r)
  * the history row needs; nothing else is computed. */
 static void fill_frame(struct run *r, unsigned wanted)
 {
-    const struct gsn_explicit *e = r->explicit_loop;
+    const struct gsn_explicit *e = r->reference->loop;
     struct gsn_frame *f = &r->frame;
     int n = e->particle_count;
     int stress = (wanted & (1u << GSN_FRAME_STRESS)) != 0;
@@ -123,8 +125,7 @@ static void fill_frame(struct run *r, unsigned wanted)
     f->time = e->time;
     f->step = (int)e->step;
     f->present = wanted;
-    gsn_explicit_particle_field(e, e->displacement,
-                                f->field[GSN_FRAME_DISPLACEMENT]);
+    gsn_explicit_particle_displacement(e, f->field[GSN_FRAME_DISPLACEMENT]);
     if (wanted & (1u << GSN_FRAME_VELOCITY))
         gsn_explicit_particle_field(e, e->velocity,
                                     f->field[GSN_FRAME_VELOCITY]);
@@ -165,7 +166,7 @@ static int write_history_header(struct run *r)
     }
     fprintf(r->history,
             ",kinetic_energy,internal_energy,external_work,max_damage,"
-            "damping_work\n");
+            "damping_work,reference_updates,update_energy,failed_particles\n");
     GSN_CHECK(!ferror(r->history), GSN_ERR_IO, "%s: cannot write",
               r->history_path);
     return GSN_OK;
@@ -178,7 +179,7 @@ static int write_history_header(struct run *r)
  * surfaces counts once) (DESIGN.md; docs/solver.md, "Boundary values"). */
 static int write_history_row(struct run *r)
 {
-    const struct gsn_explicit *e = r->explicit_loop;
+    const struct gsn_explicit *e = r->reference->loop;
     const double *u = r->frame.field[GSN_FRAME_DISPLACEMENT];
     fprintf(r->history, "%.9g,%ld", e->time, e->step);
     for (int b = 0; b < r->c->boundary_count; ++b) {
@@ -187,13 +188,14 @@ static int write_history_row(struct run *r)
         for (int s = 0; s < set->count; ++s)
             for (int k = 0; k < 3; ++k)
                 mean[k] += u[3 * set->particle[s] + k];
-        gsn_explicit_surface_force(
-            e, set->surface,
-            gsn_constraints_surface_mask(r->constraints, set->surface), force);
+        gsn_explicit_surface_force(e, set->surface,
+                                   gsn_constraints_surface_mask(
+                                       r->reference->constraints, set->surface),
+                                   force);
         for (int s = 0; s < set->count; ++s)
             for (int k = 0; k < 3; ++k)
-                if (gsn_constraints_entry(r->constraints, set->particle[s],
-                                          k) == b)
+                if (gsn_constraints_entry(r->reference->constraints,
+                                          set->particle[s], k) == b)
                     force[k] += e->reaction[3 * set->particle[s] + k];
         for (int k = 0; k < 3; ++k)
             mean[k] = set->count ? mean[k] / set->count : 0.0;
@@ -204,8 +206,10 @@ static int write_history_row(struct run *r)
     for (int j = 0; j < e->particle_count; ++j)
         if (r->frame.field[GSN_FRAME_DAMAGE][j] > max_damage)
             max_damage = r->frame.field[GSN_FRAME_DAMAGE][j];
-    fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g\n", e->kinetic_energy,
-            e->internal_energy, e->external_work, max_damage, e->damping_work);
+    fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g,%d\n",
+            e->kinetic_energy, e->internal_energy, e->external_work, max_damage,
+            e->damping_work, r->reference->update_count,
+            r->reference->energy_jump, e->dead_count);
     fflush(r->history);
     GSN_CHECK(!ferror(r->history), GSN_ERR_IO, "%s: cannot write",
               r->history_path);
@@ -228,7 +232,9 @@ static void checkpoint_arrays(struct gsn_explicit *e, double energy[4],
         [GSN_CHECKPOINT_REACTION] = e->reaction,
         [GSN_CHECKPOINT_ENERGY] = energy,
         [GSN_CHECKPOINT_DAMPING_FORCE] = e->damping_force,
-        [GSN_CHECKPOINT_MATERIAL_STATE] = e->state};
+        [GSN_CHECKPOINT_MATERIAL_STATE] = e->state,
+        [GSN_CHECKPOINT_REFERENCE_GRADIENT] = e->reference_gradient,
+        [GSN_CHECKPOINT_POINT_FAILED] = e->point_dead};
     size_t counts[GSN_CHECKPOINT_DATASET_COUNT] = {
         [GSN_CHECKPOINT_COEFFICIENT_DISPLACEMENT] = n,
         [GSN_CHECKPOINT_COEFFICIENT_VELOCITY] = n,
@@ -238,7 +244,9 @@ static void checkpoint_arrays(struct gsn_explicit *e, double energy[4],
         [GSN_CHECKPOINT_REACTION] = n,
         [GSN_CHECKPOINT_ENERGY] = 1,
         [GSN_CHECKPOINT_DAMPING_FORCE] = n,
-        [GSN_CHECKPOINT_MATERIAL_STATE] = (size_t)e->main_point_count};
+        [GSN_CHECKPOINT_MATERIAL_STATE] = (size_t)e->main_point_count,
+        [GSN_CHECKPOINT_REFERENCE_GRADIENT] = (size_t)e->main_point_count,
+        [GSN_CHECKPOINT_POINT_FAILED] = (size_t)e->main_point_count};
     memcpy(data, arrays, sizeof arrays);
     memcpy(rows, counts, sizeof counts);
 }
@@ -246,7 +254,7 @@ static void checkpoint_arrays(struct gsn_explicit *e, double energy[4],
 /* Writes (write = 1) or reads the checkpoint datasets. */
 static int checkpoint_transfer(struct run *r, int write, double energy[4])
 {
-    struct gsn_explicit *e = r->explicit_loop;
+    struct gsn_explicit *e = r->reference->loop;
     void *data[GSN_CHECKPOINT_DATASET_COUNT];
     size_t rows[GSN_CHECKPOINT_DATASET_COUNT];
     checkpoint_arrays(e, energy, data, rows);
@@ -265,15 +273,124 @@ static int checkpoint_transfer(struct run *r, int write, double energy[4])
     return GSN_OK;
 }
 
+/* Writes the reference configuration of the last update into the
+ * checkpoint group: its positions and, where the body was made again, its
+ * tetrahedra; the update count, time, step and added energy. */
+static int write_checkpoint_reference(struct run *r, hid_t group)
+{
+    const struct gsn_reference *ref = r->reference;
+    const struct gsn_dataset_info *d = gsn_checkpoint_reference_datasets;
+    GSN_CALL(gsn_h5_write(r->results, &d[GSN_CHECKPOINT_REFERENCE_POSITION],
+                          (size_t)ref->model->particle_count,
+                          ref->model->position));
+    /* the body, when it was made again since the last checkpoint (HDF5
+     * does not give back the space of a deleted dataset) */
+    if (ref->remesh_count > 0 && ref->remesh_count != r->body_written) {
+        for (int k = GSN_CHECKPOINT_BODY_TETRAHEDRA;
+             k <= GSN_CHECKPOINT_BODY_FACE; ++k)
+            if (gsn_h5_exists(r->results, d[k].path))
+                GSN_CHECK(H5Ldelete(r->results, d[k].path, H5P_DEFAULT) >= 0,
+                          GSN_ERR_IO, "%s: cannot replace %s",
+                          r->results_temporary, d[k].path);
+        size_t count = (size_t)ref->body.tetrahedron_count;
+        GSN_CALL(gsn_h5_write(r->results, &d[GSN_CHECKPOINT_BODY_TETRAHEDRA],
+                              count, ref->body.tetrahedra));
+        GSN_CALL(gsn_h5_write(r->results, &d[GSN_CHECKPOINT_BODY_FACE], count,
+                              ref->body.face));
+        r->body_written = ref->remesh_count;
+    }
+    GSN_CALL(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_UPDATES,
+                                   ref->update_count));
+    GSN_CALL(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_REMESHES,
+                                   ref->remesh_count));
+    GSN_CALL(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_REFERENCE_STEP,
+                                   (int)ref->step));
+    GSN_CALL(gsn_h5_attr_write_double(group, GSN_CHECKPOINT_ATTR_REFERENCE_TIME,
+                                      ref->time));
+    GSN_CALL(gsn_h5_attr_write_double(group, GSN_CHECKPOINT_ATTR_UPDATE_ENERGY,
+                                      ref->energy_jump));
+    return GSN_OK;
+}
+
+/* Builds the discretization of the checkpoint's reference configuration,
+ * when an update made one, before its state is read into the loop. */
+static int read_checkpoint_reference(struct run *r, hid_t group)
+{
+    struct gsn_reference *ref = r->reference;
+    const struct gsn_dataset_info *d = gsn_checkpoint_reference_datasets;
+    int updates = 0, remeshes = 0, step = 0;
+    double time = 0.0, energy = 0.0;
+    /* (checkpoints without updates lack nothing that matters) */
+    if (H5Aexists(group, GSN_CHECKPOINT_ATTR_UPDATES) <= 0)
+        return GSN_OK;
+    GSN_CALL(
+        gsn_h5_attr_read_int(group, GSN_CHECKPOINT_ATTR_UPDATES, &updates));
+    if (updates == 0)
+        return GSN_OK;
+    GSN_CALL(
+        gsn_h5_attr_read_int(group, GSN_CHECKPOINT_ATTR_REMESHES, &remeshes));
+    GSN_CALL(
+        gsn_h5_attr_read_int(group, GSN_CHECKPOINT_ATTR_REFERENCE_STEP, &step));
+    GSN_CALL(gsn_h5_attr_read_double(group, GSN_CHECKPOINT_ATTR_REFERENCE_TIME,
+                                     &time));
+    GSN_CALL(gsn_h5_attr_read_double(group, GSN_CHECKPOINT_ATTR_UPDATE_ENERGY,
+                                     &energy));
+    size_t n = (size_t)r->model.particle_count;
+    double *position = malloc(sizeof(double) * 3 * (n ? n : 1));
+    GSN_CHECK(position, GSN_ERR_MEMORY, "out of memory");
+    struct gsn_body body;
+    memset(&body, 0, sizeof body);
+    int rc = GSN_OK;
+    GSN_CALL_GOTO(gsn_h5_read(r->results, &d[GSN_CHECKPOINT_REFERENCE_POSITION],
+                              n, position),
+                  rc, done);
+    if (remeshes > 0) {
+        size_t count = 0;
+        GSN_CALL_GOTO(
+            gsn_h5_rows(r->results, &d[GSN_CHECKPOINT_BODY_TETRAHEDRA], &count),
+            rc, done);
+        body.tetrahedron_count = (int)count;
+        body.tetrahedra = malloc(sizeof(int) * 4 * (count ? count : 1));
+        body.face = malloc(sizeof(int) * 4 * (count ? count : 1));
+        GSN_CHECK_GOTO(body.tetrahedra && body.face, rc, GSN_ERR_MEMORY, done,
+                       "out of memory");
+        GSN_CALL_GOTO(gsn_h5_read(r->results,
+                                  &d[GSN_CHECKPOINT_BODY_TETRAHEDRA], count,
+                                  body.tetrahedra),
+                      rc, done);
+        GSN_CALL_GOTO(gsn_h5_read(r->results, &d[GSN_CHECKPOINT_BODY_FACE],
+                                  count, body.face),
+                      rc, done);
+        for (size_t k = 0; k < 4 * count; ++k)
+            GSN_CHECK_GOTO(
+                body.tetrahedra[k] >= 0 && (size_t)body.tetrahedra[k] < n &&
+                    body.face[k] >= GSN_MODEL_FACE_UNTAGGED &&
+                    body.face[k] < r->model.surface_count,
+                rc, GSN_ERR_INPUT, done, "%s: %s is damaged",
+                r->results_temporary, d[GSN_CHECKPOINT_BODY_TETRAHEDRA].path);
+    }
+    GSN_CALL_GOTO(gsn_reference_restore(ref, position,
+                                        remeshes > 0 ? &body : NULL, time, step,
+                                        updates, energy),
+                  rc, done);
+    ref->remesh_count = remeshes;
+    r->body_written = remeshes;
+done:
+    free(position);
+    gsn_body_free(&body);
+    return rc;
+}
+
 static int write_checkpoint(struct run *r)
 {
-    const struct gsn_explicit *e = r->explicit_loop;
+    const struct gsn_explicit *e = r->reference->loop;
     hid_t group = H5I_INVALID_HID;
     GSN_CALL(gsn_h5_group(r->results, GSN_CHECKPOINT_GROUP, &group));
     int rc = GSN_OK;
     double energy[4] = {e->kinetic_energy, e->internal_energy, e->external_work,
                         e->damping_work};
     GSN_CALL_GOTO(checkpoint_transfer(r, 1, energy), rc, done);
+    GSN_CALL_GOTO(write_checkpoint_reference(r, group), rc, done);
     GSN_CALL_GOTO(gsn_h5_attr_write_double(group, GSN_FRAME_ATTR_TIME, e->time),
                   rc, done);
     GSN_CALL_GOTO(gsn_h5_attr_write_double(
@@ -299,7 +416,7 @@ done:
 
 static int read_checkpoint(struct run *r)
 {
-    struct gsn_explicit *e = r->explicit_loop;
+    struct gsn_explicit *e = r->reference->loop;
     GSN_CHECK(gsn_h5_exists(r->results, GSN_CHECKPOINT_GROUP), GSN_ERR_INPUT,
               "%s: no checkpoint to restart from", r->results_temporary);
     hid_t group = H5Gopen2(r->results, GSN_CHECKPOINT_GROUP, H5P_DEFAULT);
@@ -307,6 +424,8 @@ static int read_checkpoint(struct run *r)
               r->results_temporary);
     int rc = GSN_OK, step = 0;
     double energy[4];
+    GSN_CALL_GOTO(read_checkpoint_reference(r, group), rc, done);
+    e = r->reference->loop;
     GSN_CALL_GOTO(checkpoint_transfer(r, 0, energy), rc, done);
     GSN_CALL_GOTO(gsn_h5_attr_read_int(group, GSN_FRAME_ATTR_STEP, &step), rc,
                   done);
@@ -403,7 +522,7 @@ static double next_frame_time(const struct gsn_case *c, double time, double dt)
 /* The next frame and history row after the loop's present step. */
 static void schedule_outputs(struct run *r)
 {
-    const struct gsn_explicit *e = r->explicit_loop;
+    const struct gsn_explicit *e = r->reference->loop;
     r->next_frame_time = next_frame_time(r->c, e->time, e->dt);
     r->next_row_time = next_multiple(r->c->history_every, e->time, e->dt);
 }
@@ -412,7 +531,7 @@ static void schedule_outputs(struct run *r)
  * stable one unless forced. */
 static int choose_time_step(struct run *r)
 {
-    struct gsn_explicit *e = r->explicit_loop;
+    struct gsn_explicit *e = r->reference->loop;
     const struct gsn_case *c = r->c;
     double stable = 0.0;
     GSN_CALL(gsn_explicit_stable_step(e, &stable));
@@ -453,7 +572,7 @@ static void format_duration(double seconds, char *out, size_t size)
 static void print_progress(const struct run *r, double started, long first,
                            int final)
 {
-    const struct gsn_explicit *e = r->explicit_loop;
+    const struct gsn_explicit *e = r->reference->loop;
     double elapsed = now_seconds() - started;
     long done = e->step - first;
     double rate = elapsed > 0 ? done / elapsed : 0.0;
@@ -474,11 +593,12 @@ static void print_progress(const struct run *r, double started, long first,
 
 static int check_energy(struct run *r)
 {
-    const struct gsn_explicit *e = r->explicit_loop;
+    const struct gsn_explicit *e = r->reference->loop;
     double scale = fmax(fmax(e->kinetic_energy, fabs(e->internal_energy)),
                         fmax(fabs(e->external_work), e->damping_work));
+    /* the kinetic energy the reference updates added is not work done */
     double balance = e->kinetic_energy + e->internal_energy + e->damping_work -
-                     e->external_work;
+                     e->external_work - r->reference->energy_jump;
     double check_from =
         fmax(r->c->time_ramp, QUASI_STATIC_FIRST * r->c->time_end);
     if (e->time >= check_from && e->internal_energy > 0.0 &&
@@ -572,7 +692,7 @@ static const char *stopped_by(int signal_number)
  * --restart continues from it (the frames so far are kept as they are). */
 static int stop_for_signal(struct run *r)
 {
-    const struct gsn_explicit *e = r->explicit_loop;
+    const struct gsn_explicit *e = r->reference->loop;
     int signal_number = stop_signal;
     GSN_CALL(write_checkpoint(r));
     GSN_CALL(
@@ -586,17 +706,68 @@ static int stop_for_signal(struct run *r)
         r->outdir);
 }
 
+/* What the reference updates did and cost, and the failed particles. */
+static void print_updates(const struct run *r, double seconds)
+{
+    const struct gsn_reference *ref = r->reference;
+    if (ref->update_count > 0)
+        printf("reference updates: %d (%d with the body's tetrahedra made "
+               "again), %.3g s, %.1f%% of the solve; the kinetic energy "
+               "they added: %.4g J\n",
+               ref->update_count, ref->remesh_count, ref->seconds,
+               seconds > 0.0 ? 100.0 * ref->seconds / seconds : 0.0,
+               ref->energy_jump);
+    if (ref->loop->dead_count > 0)
+        printf("failed particles: %d (turned inside out; they carry no "
+               "stress and keep their mass)\n",
+               ref->loop->dead_count);
+}
+
+/* A reference-configuration update when the last step calls for one
+ * (reference.h), with a line saying why and what it cost. */
+static int update_reference(struct run *r)
+{
+    enum gsn_reference_reason reason = gsn_reference_due(r->reference);
+    if (reason == GSN_REFERENCE_NOT_DUE)
+        return GSN_OK;
+    struct gsn_reference_report report;
+    GSN_CALL(gsn_reference_update(r->reference, &report));
+    const struct gsn_explicit *e = r->reference->loop;
+    if (!r->options->quiet) {
+        const double *x = &r->model.position[3 * report.particle];
+
+        fprintf(stderr,
+                "%sreference update %d at step %ld, t = %.4g s (%s: |E| %.3g, "
+                "det F %.3g..%.3g, at particle %d, first at %g, %g, %g): "
+                "%.2f s%s, kinetic energy %.4g -> %.4g J, mass %.1e, momentum "
+                "%.1e, %d failed particles\n",
+                isatty(STDERR_FILENO) ? "\r" : "", r->reference->update_count,
+                e->step, e->time, gsn_reference_reason_name(reason),
+                report.strain, report.volume[0], report.volume[1],
+                report.particle, x[0], x[1], x[2], report.seconds,
+                report.remeshed ? " (body's tetrahedra made again)" : "",
+                report.kinetic_before, report.kinetic_after, report.mass_error,
+                report.momentum_error, e->dead_count);
+        fflush(stderr);
+    }
+    return GSN_OK;
+}
+
 static int run_loop(struct run *r)
 {
-    struct gsn_explicit *e = r->explicit_loop;
     double started = now_seconds(), last_print = started;
-    long first = e->step;
+    long first = r->reference->loop->step;
     int quiet = r->options->quiet;
-    while (e->step < r->total_steps) {
+    while (r->reference->loop->step < r->total_steps) {
         if (stop_signal)
             return stop_for_signal(r);
-        GSN_CALL(gsn_explicit_step(e));
+        GSN_CALL(gsn_explicit_step(r->reference->loop));
         GSN_CALL(check_energy(r));
+        /* before the outputs of the step, so that its checkpoint holds the
+         * new reference (a restart then continues on it; also at the last
+         * step, which a longer run continues) */
+        GSN_CALL(update_reference(r));
+        struct gsn_explicit *e = r->reference->loop;
         /* Frames at the steps nearest the frame times before the end, and
          * one at the last step (not also one a step before it). */
         int last = e->step == r->total_steps;
@@ -624,8 +795,10 @@ static int run_loop(struct run *r)
             last_print = t;
         }
     }
-    if (!quiet)
-        print_phases(e);
+    if (!quiet) {
+        print_phases(r->reference->loop);
+        print_updates(r, now_seconds() - started);
+    }
     return GSN_OK;
 }
 
@@ -770,7 +943,7 @@ static int check_not_interrupted(const struct run *r)
  * checkpoint of an earlier run's results (complete or cut short). */
 static int open_outputs(struct run *r)
 {
-    struct gsn_explicit *e = r->explicit_loop;
+    struct gsn_explicit *e = r->reference->loop;
     char *case_yaml = NULL;
     if (!r->options->restart) {
         GSN_CALL(check_not_interrupted(r));
@@ -856,10 +1029,8 @@ fail:
 
 static void run_free(struct run *r)
 {
-    gsn_explicit_destroy(&r->explicit_loop);
-    gsn_constraints_destroy(&r->constraints);
+    gsn_reference_destroy(&r->reference);
     gsn_material_model_destroy(&r->material);
-    gsn_quadrature_destroy(&r->quadrature);
     gsn_model_free(&r->model);
     gsn_frame_free(&r->frame);
     for (int b = 0; b < GSN_MAX_BOUNDARIES; ++b)
@@ -926,7 +1097,7 @@ static int check_model_source(const struct run *r)
  * one in results.h5. */
 static long planned_frames(const struct run *r, double *frame_bytes)
 {
-    const struct gsn_explicit *e = r->explicit_loop;
+    const struct gsn_explicit *e = r->reference->loop;
     const struct gsn_case *c = r->c;
     unsigned present = c->output_fields | (1u << GSN_FRAME_DISPLACEMENT) |
                        (1u << GSN_FRAME_DAMAGE);
@@ -962,27 +1133,10 @@ static int run_setup(struct run *r)
     GSN_CALL(check_model_source(r));
     GSN_CALL(gsn_model_read(r->model_path, &r->model));
     GSN_CALL(build_boundary_sets(r));
-    struct gsn_kernel_options kernel;
-    gsn_kernel_options_from_case(c, &kernel);
-    GSN_CALL(
-        gsn_quadrature_create(&r->model, &kernel, NULL, 0, &r->quadrature));
     GSN_CALL(gsn_material_model_create(gsn_material_name_for_case(&c->material),
                                        &c->material, &r->material));
-    GSN_CALL(gsn_constraints_create(
-        &r->model, c, &r->quadrature->particle_values, &r->constraints));
-    GSN_CALL(gsn_explicit_create(&r->model, r->quadrature, r->material,
-                                 r->constraints, c, c->time_step,
-                                 &r->explicit_loop));
-    /* The loop reads its own packed copy of the gradient rows (point_blocks.h):
-     * the quadrature's are freed, 709 MB of the working set on Slope I with
-     * MSCNI (the peak memory is reached during set-up, before). */
-    gsn_shape_rows_free(&r->quadrature->gradient);
-    for (int b = 0; b < c->boundary_count; ++b)
-        if (c->boundaries[b].has_traction[0])
-            gsn_explicit_add_traction(
-                r->explicit_loop, &r->model,
-                gsn_model_find_surface(&r->model, c->boundaries[b].name),
-                c->boundaries[b].traction);
+    GSN_CALL(gsn_reference_create(&r->model, c, r->material, c->time_step,
+                                  r->options->threads, &r->reference));
     int traction = 0;
     for (int b = 0; b < c->boundary_count; ++b)
         for (int k = 0; k < 3; ++k) {
@@ -1005,12 +1159,12 @@ static int run_setup(struct run *r)
     if (!r->options->quiet)
         printf("solver: %d particles, %d integration points, %s, %.1f MB of "
                "shape functions, set up in %.2f s, %ld steps\n",
-               r->model.particle_count, r->quadrature->point_count,
+               r->model.particle_count, r->reference->quadrature->point_count,
                c->stabilization == GSN_STABILIZATION_MSCNI
                    ? "scni + mscni stabilization"
                    : gsn_integration_name(c->integration),
-               gsn_quadrature_bytes(r->quadrature) / 1e6, now_seconds() - t0,
-               r->total_steps);
+               gsn_quadrature_bytes(r->reference->quadrature) / 1e6,
+               now_seconds() - t0, r->total_steps);
     double frame_bytes = 0.0;
     long frames = planned_frames(r, &frame_bytes);
     if (!r->options->quiet)

@@ -96,7 +96,42 @@ static void test_lattice(int facet_points)
     int interior = (NX - 1) * NY * NZ + NX * (NY - 1) * NZ + NX * NY * (NZ - 1);
     int boundary = 2 * (NY * NZ + NX * NZ + NX * NY);
     TEST_INT(m.facet_count, interior + boundary);
-    TEST_INT(m.tetrahedron_count, 0);
+    /* the Delaunay tetrahedra of the lattice fill the box, and their hull
+     * faces carry the box faces: each face's triangles add up to its area
+     * (the body the solver follows through reference updates) */
+    TEST_TRUE(m.tetrahedron_count > 0);
+    double volume = 0.0, area[6] = {0, 0, 0, 0, 0, 0};
+    static const int face_vertex[4][3] = {
+        {1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+    for (int t = 0; t < m.tetrahedron_count; ++t) {
+        volume += gsn_body_tetrahedron_volume(m.position, &m.tetrahedra[4 * t]);
+        for (int k = 0; k < 4; ++k) {
+            int face = m.tetrahedron_face[4 * t + k];
+            TEST_TRUE(face >= GSN_MODEL_FACE_INTERNAL && face < 6);
+            if (face < 0)
+                continue;
+            const double *a =
+                &m.position[3 * m.tetrahedra[4 * t + face_vertex[k][0]]];
+            const double *b =
+                &m.position[3 * m.tetrahedra[4 * t + face_vertex[k][1]]];
+            const double *c =
+                &m.position[3 * m.tetrahedra[4 * t + face_vertex[k][2]]];
+            double u[3], w[3];
+            for (int j = 0; j < 3; ++j) {
+                u[j] = b[j] - a[j];
+                w[j] = c[j] - a[j];
+            }
+            double n0 = u[1] * w[2] - u[2] * w[1],
+                   n1 = u[2] * w[0] - u[0] * w[2],
+                   n2 = u[0] * w[1] - u[1] * w[0];
+            area[face] += 0.5 * sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+        }
+    }
+    /* a sum of about 10^3 volumes, each rounded to 1e-16 */
+    TEST_REL(volume, (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]),
+             1e-13);
+    for (int f = 0; f < 6; ++f)
+        TEST_REL(area[f], m.surface_area[f], 1e-13);
     TEST_INT(m.surface_count, 6);
     TEST_TRUE(strcmp(m.surface_name[0], "xmin") == 0);
     TEST_TRUE(strcmp(m.surface_name[5], "zmax") == 0);

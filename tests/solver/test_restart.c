@@ -164,6 +164,18 @@ static int append_frame_after_checkpoint(const char *folder)
     return step;
 }
 
+/* The reference updates a run made: the last row of its history. */
+static int updates_done(const char *folder)
+{
+    const char *names[] = {"reference_updates"};
+    double values[4096];
+    int rows = fixture_history(folder, names, 1, values, 4096);
+    TEST_TRUE(rows > 0);
+    printf("%s: %g reference updates\n", folder,
+           rows > 0 ? values[rows - 1] : -1);
+    return rows > 0 ? (int)values[rows - 1] : 0;
+}
+
 int main(void)
 {
     test_begin();
@@ -194,9 +206,28 @@ int main(void)
     run(&c, c.time_end, 1, parts_times, 2);
     check_restart_frames(whole_times, parts_times, cut_step);
 
-    char command[400];
-    snprintf(command, sizeof command, "rm -rf %s %s %s %s %s", whole, parts,
-             single, whole_times, parts_times);
+    /* With reference updates every 0.005 s (issue 15, point 7): a run
+     * stopped after some and continued builds the checkpoint's reference
+     * again and ends with the uninterrupted run's bits; so does a run on
+     * one thread. */
+    c.output_time_count = 0;
+    c.reference_update = 1;
+    c.reference_every = 0.005;
+    static char whole_updates[] = "/tmp/geoscni-test-whole-updates-XXXXXX";
+    static char parts_updates[] = "/tmp/geoscni-test-parts-updates-XXXXXX";
+    static char single_updates[] = "/tmp/geoscni-test-single-updates-XXXXXX";
+    run(&c, c.time_end, 0, whole_updates, 2);
+    run(&c, 0.45 * c.time_end, 0, parts_updates, 2);
+    run(&c, c.time_end, 1, parts_updates, 2);
+    run(&c, c.time_end, 0, single_updates, 1);
+    TEST_TRUE(updates_done(whole_updates) >= 6);
+    TEST_TRUE(same_last_frame(whole_updates, parts_updates));
+    TEST_TRUE(same_last_frame(whole_updates, single_updates));
+
+    char command[800];
+    snprintf(command, sizeof command, "rm -rf %s %s %s %s %s %s %s %s", whole,
+             parts, single, whole_times, parts_times, whole_updates,
+             parts_updates, single_updates);
     TEST_INT(system(command), 0);
     return test_end("test_restart");
 }

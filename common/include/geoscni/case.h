@@ -25,6 +25,12 @@ enum { GSN_MAX_OUTPUT_TIMES = 1000 };
 /* output.every = end / this, when neither output.every nor output.times is
  * given */
 #define GSN_DEFAULT_FRAMES 100
+/* Reference-configuration updates (issue 15, docs/solver.md): a particle's
+ * strain |E| = |F^T F - I| / 2 since the last update above this, or its
+ * volume ratio det F outside the range below, triggers one. */
+#define GSN_DEFAULT_REFERENCE_STRAIN 0.2
+#define GSN_DEFAULT_REFERENCE_VOLUME_MIN 0.7
+#define GSN_DEFAULT_REFERENCE_VOLUME_MAX 1.4
 #define GSN_DEFAULT_MAX_PARTICLES 5000000 /* more needs --force */
 
 /* Defaults of the economy keys (docs/economy.md). */
@@ -112,12 +118,20 @@ struct gsn_case {
                                 smoothly from 0 (0: at once) */
     double damping_local;    /* Cundall's local damping coefficient (0: none) */
     int small_strain;        /* kinematics: small (no geometry update) */
-    double output_every;     /* s between frames; 0: none (output.times
-                                alone) */
-    int output_every_default; /* output.every and .times not given: every
-                                 is time_end / GSN_DEFAULT_FRAMES */
-    double history_every;     /* s between history rows besides the frames'
-                                 (0: at the frames only) */
+    /* reference_update: the shape functions and cells built again on the
+     * current configuration when the body has moved far enough from the
+     * last one (large kinematics, nodal integration; docs/solver.md) */
+    int reference_update;       /* 1: on (the default where it applies) */
+    double reference_strain;    /* |E| since the last update */
+    double reference_volume[2]; /* det F since the last update */
+    double reference_every;     /* s between updates at most; 0: none */
+    int reference_update_line;  /* line of the key, 0 if absent */
+    double output_every;        /* s between frames; 0: none (output.times
+                                   alone) */
+    int output_every_default;   /* output.every and .times not given: every
+                                   is time_end / GSN_DEFAULT_FRAMES */
+    double history_every;       /* s between history rows besides the frames'
+                                   (0: at the frames only) */
     /* economy (docs/economy.md) */
     int refinement_count;
     struct gsn_refinement refinements[GSN_MAX_REFINEMENTS];

@@ -106,6 +106,40 @@ struct gsn_cells_report {
 int gsn_cells_check(const struct gsn_model *m, double body_volume,
                     struct gsn_cells_report *report);
 
+/* The body as tetrahedra whose nodes are the particles, each positively
+ * oriented where it was made, with what each face lies on (the model's
+ * convention: a surface index, GSN_MODEL_FACE_INTERNAL or
+ * GSN_MODEL_FACE_UNTAGGED). Its union is the body; the cells are clipped
+ * to it. */
+struct gsn_body {
+    int tetrahedron_count;
+    int *tetrahedra; /* x 4 particle indices */
+    int *face;       /* x 4: the face opposite vertex k */
+};
+
+void gsn_body_free(struct gsn_body *b);
+int gsn_body_copy(const struct gsn_body *from, struct gsn_body *to);
+
+/* Signed volume of tetrahedron v at positions x (m^3). */
+double gsn_body_tetrahedron_volume(const double *x, const int v[4]);
+
+/* The tetrahedron of smallest signed volume at positions x, and that
+ * volume over the mean (ratio; <= 0 where one is turned inside out). */
+int gsn_body_worst(const struct gsn_body *b, const double *x, double *ratio);
+
+/* The Delaunay tetrahedra of the points as a body (their convex hull),
+ * every hull face GSN_MODEL_FACE_UNTAGGED for the caller to name. */
+int gsn_body_of_points(const double *x, int particle_count,
+                       struct gsn_body *out);
+
+/* A new body for particles at x that the old body no longer fits (some of
+ * its tetrahedra turned inside out): the Delaunay tetrahedra of x whose
+ * centroids the old body's boundary surface encloses (its winding number,
+ * so a boundary folded over itself still encloses its inside), their
+ * boundary faces named as the old boundary triangles nearest to them. */
+int gsn_body_remesh(const struct gsn_body *old, const double *x,
+                    int particle_count, struct gsn_body *out);
+
 struct gsn_cells_options {
     int facet_points;    /* quadrature points per facet: 1 or 3 */
     int threads;         /* 0: OpenMP's default */
@@ -113,15 +147,15 @@ struct gsn_cells_options {
 };
 
 /* The cells of model m's particles at the given positions (n x 3, m; NULL:
- * m's own), clipped to the body whose convex pieces are m's tetrahedra with
- * their nodes at those positions and whose boundary faces carry
- * m->tetrahedron_face: into out (allocated here, freed with
+ * m's own), clipped to the body (NULL: m's tetrahedra and their faces)
+ * with its nodes at those positions: into out (allocated here, freed with
  * gsn_model_free), a copy of m with the positions, volumes, centroids,
- * facets and surface areas (of the moved boundary triangles) of the new
- * cells, checked (gsn_cells_check against the tetrahedra's volume). A
- * tetrahedron that the positions turn inside out or flat is GSN_ERR_NUMERICAL
- * naming it. report may be NULL. */
+ * facets, surface areas (of the body's boundary triangles there) and the
+ * body of the new cells, checked (gsn_cells_check against the
+ * tetrahedra's volume). A tetrahedron that the positions turn inside out
+ * or flat is GSN_ERR_NUMERICAL naming it. report may be NULL. */
 int gsn_cells_model_at(const struct gsn_model *m, const double *position,
+                       const struct gsn_body *body,
                        const struct gsn_cells_options *options,
                        struct gsn_model *out, struct gsn_cells_report *report);
 

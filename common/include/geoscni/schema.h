@@ -146,7 +146,33 @@ struct gsn_dataset_info {
       GSN_H5_DOUBLE, 0, "various",                                             \
       "state variables of the material model at the main integration points "  \
       "(nodal or Gauss points); columns: the model's state size, named by "    \
-      "the attribute 'names'")
+      "the attribute 'names'")                                                 \
+    X(GSN_CHECKPOINT_REFERENCE_GRADIENT, "checkpoint/reference_gradient",      \
+      GSN_H5_DOUBLE, 9, "1",                                                   \
+      "F of the reference configuration at the main integration points, "      \
+      "row-major: F = (I + H) F_ref")                                          \
+    X(GSN_CHECKPOINT_POINT_FAILED, "checkpoint/point_failed", GSN_H5_INT, 1,   \
+      "1", "1 where a main integration point has failed (no stress)")
+
+/* The reference configuration of the last update (issue 15) in the
+ * checkpoint: positions, and the body's tetrahedra where they were made
+ * again; attributes with the update count, time, step and the kinetic
+ * energy the updates added. */
+#define GSN_CHECKPOINT_REFERENCE_DATASETS(X)                                   \
+    X(GSN_CHECKPOINT_REFERENCE_POSITION, "checkpoint/reference_position",      \
+      GSN_H5_DOUBLE, 3, "m",                                                   \
+      "particle positions of the reference configuration of the last update")  \
+    X(GSN_CHECKPOINT_BODY_TETRAHEDRA, "checkpoint/body_tetrahedra",            \
+      GSN_H5_INT, 4, "1",                                                      \
+      "the body's tetrahedra as particle indices, where made again")           \
+    X(GSN_CHECKPOINT_BODY_FACE, "checkpoint/body_face", GSN_H5_INT, 4, "1",    \
+      "what each face of the body's tetrahedra lies on, as "                   \
+      "mesh/tetrahedron_face")
+#define GSN_CHECKPOINT_ATTR_UPDATES "reference_updates"
+#define GSN_CHECKPOINT_ATTR_REFERENCE_TIME "reference_time"
+#define GSN_CHECKPOINT_ATTR_REFERENCE_STEP "reference_step"
+#define GSN_CHECKPOINT_ATTR_UPDATE_ENERGY "reference_update_energy"
+#define GSN_CHECKPOINT_ATTR_REMESHES "body_remeshes"
 
 #define GSN_DATASET_ENUM(id, path, type, columns, units, description) id,
 enum gsn_model_dataset {
@@ -158,6 +184,10 @@ enum gsn_frame_field {
 enum gsn_checkpoint_dataset {
     GSN_CHECKPOINT_DATASETS(GSN_DATASET_ENUM) GSN_CHECKPOINT_DATASET_COUNT
 };
+enum gsn_checkpoint_reference_dataset {
+    GSN_CHECKPOINT_REFERENCE_DATASETS(GSN_DATASET_ENUM)
+        GSN_CHECKPOINT_REFERENCE_DATASET_COUNT
+};
 #undef GSN_DATASET_ENUM
 
 extern const struct gsn_dataset_info
@@ -165,6 +195,8 @@ extern const struct gsn_dataset_info
 extern const struct gsn_dataset_info gsn_frame_fields[GSN_FRAME_FIELD_COUNT];
 extern const struct gsn_dataset_info
     gsn_checkpoint_datasets[GSN_CHECKPOINT_DATASET_COUNT];
+extern const struct gsn_dataset_info
+    gsn_checkpoint_reference_datasets[GSN_CHECKPOINT_REFERENCE_DATASET_COUNT];
 
 #ifdef __cplusplus
 }
