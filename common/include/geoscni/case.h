@@ -86,6 +86,8 @@ struct gsn_material {
     double dp_alpha;      /* friction coefficient alpha, - */
     double dp_R;          /* cohesion-like R, Pa */
     double dp_dilatancy;  /* beta of the potential; = alpha: associated */
+    /* lines of the keys in the case file (0: not given), for messages */
+    int line_density, line_bulk_modulus, line_shear_modulus, line_R;
 };
 
 struct gsn_case {
@@ -149,6 +151,12 @@ void gsn_case_name(const char *path, char *out, size_t size);
  * output is up to date when the model it wrote carries the same line and
  * is newer than the geometry file. */
 int gsn_case_pre_signature(const struct gsn_case *c, char *out, size_t size);
+
+/* Writes a warning for each value that is legal but implausible for soil,
+ * with the unit mistake it likely is (a density of 1.88, t/m^3 for kg/m^3;
+ * moduli in kPa or MPa for Pa; swapped moduli): "warning: FILE:LINE:
+ * ...". Returns the number of warnings. */
+int gsn_case_warn_implausible(const struct gsn_case *c, FILE *out);
 
 /* Index of a boundary entry by surface name, or -1. */
 int gsn_case_find_boundary(const struct gsn_case *c, const char *name);
