@@ -17,6 +17,7 @@
 #include "geoscni/tensor.h"
 #include "material.h"
 
+#include <errno.h>
 #include <math.h>
 #include <omp.h>
 #include <signal.h>
@@ -42,8 +43,15 @@
 #define QUASI_STATIC_FIRST 0.05
 /* Frames that add up to more than this many bytes are worth a warning. */
 #define LARGE_OUTPUT_BYTES 2e9
+/* A sudden load is warned of with a suggested time.ramp of this many
+ * periods of the body's lowest mode (docs/solver.md, "Quasi-static
+ * loads"). */
+#define SUDDEN_LOAD_PERIODS 2.0
 /* Wall-clock seconds between checkpoints. */
 #define CHECKPOINT_INTERVAL 30.0
+/* Wall-clock seconds between progress lines written to a file or pipe
+ * (besides one at every tenth of the run), unless the options give it. */
+#define PROGRESS_INTERVAL 10.0
 
 struct boundary_set {
     int surface; /* index in the model */
@@ -79,6 +87,11 @@ struct run {
     double kinetic_ratio;      /* largest KE / W_int since the check began */
     double kinetic_ratio_time; /* s, when it occurred */
     double last_checkpoint;    /* wall-clock time of the last one, s */
+    /* The dead loads (gravity, tractions): f_ext at full value; the loop's
+     * f_ext is it times the ramp factor applied (apply_loads). */
+    double *full_external;
+    double applied_factor;
+    double traction_force[GSN_MAX_BOUNDARIES][3]; /* full resultant, N */
 };
 
 static double now_seconds(void)
@@ -155,27 +168,58 @@ static void fill_frame(struct run *r, unsigned wanted)
                sizeof(double) * (size_t)n);
 }
 
+/* Flushes history.csv and reports a failed write (a full disk by name). */
+static int history_flush(const struct run *r)
+{
+    if (fflush(r->history) != 0 || ferror(r->history))
+        return GSN_WRITE_ERROR(r->history_path, errno, "cannot write");
+    return GSN_OK;
+}
+
+/* The header: each column's unit after its name (time_s, NAME_fz_N), so
+ * the file stays a plain CSV that carries its units. */
 static int write_history_header(struct run *r)
 {
-    fprintf(r->history, "time,step");
+    fprintf(r->history, "time_s,step");
     for (int b = 0; b < r->c->boundary_count; ++b) {
         const char *name = r->c->boundaries[b].name;
-        fprintf(r->history, ",%s_ux,%s_uy,%s_uz,%s_fx,%s_fy,%s_fz", name, name,
-                name, name, name, name);
+        fprintf(r->history, ",%s_ux_m,%s_uy_m,%s_uz_m,%s_fx_N,%s_fy_N,%s_fz_N",
+                name, name, name, name, name, name);
     }
     fprintf(r->history,
-            ",kinetic_energy,internal_energy,external_work,max_damage,"
-            "damping_work\n");
-    GSN_CHECK(!ferror(r->history), GSN_ERR_IO, "%s: cannot write",
-              r->history_path);
+            ",kinetic_energy_J,internal_energy_J,external_work_J,max_damage,"
+            "damping_work_J\n");
+    GSN_CALL(history_flush(r));
     return GSN_OK;
+}
+
+/* The factor of the dead loads at time t: with time.ramp they rise as the
+ * prescribed velocities do, (1 - cos(pi t / T)) / 2, else 1 (constraint.h,
+ * gsn_ramp_factor). */
+static double load_factor(const struct run *r, double t)
+{
+    return gsn_ramp_factor(r->c->time_ramp, GSN_FIELD_VELOCITY, t);
+}
+
+/* Sets the loop's f_ext to the dead loads at time t (a no-op once they are
+ * at full value, and for a case without them). */
+static void apply_loads(struct run *r, double t)
+{
+    struct gsn_explicit *e = r->explicit_loop;
+    double factor = load_factor(r, t);
+    if (!r->full_external || factor == r->applied_factor)
+        return;
+    for (int i = 0; i < 3 * e->particle_count; ++i)
+        e->f_ext[i] = factor * r->full_external[i];
+    r->applied_factor = factor;
 }
 
 /* One history row from the frame just filled: the mean u(X_J) over the
  * surface's particles and the force the supports apply through it, the
  * resultant of its tractions plus the constraint reactions of the
  * components the entry holds (gsn_constraints_entry: a particle on two
- * surfaces counts once) (DESIGN.md; docs/solver.md, "Boundary values"). */
+ * surfaces counts once) (DESIGN.md; docs/solver.md, "Boundary values"); on
+ * a traction entry, the resultant of the traction it applies. */
 static int write_history_row(struct run *r)
 {
     const struct gsn_explicit *e = r->explicit_loop;
@@ -195,6 +239,9 @@ static int write_history_row(struct run *r)
                 if (gsn_constraints_entry(r->constraints, set->particle[s],
                                           k) == b)
                     force[k] += e->reaction[3 * set->particle[s] + k];
+        /* a traction entry: the force it applies, ramped as applied */
+        for (int k = 0; k < 3; ++k)
+            force[k] += r->applied_factor * r->traction_force[b][k];
         for (int k = 0; k < 3; ++k)
             mean[k] = set->count ? mean[k] / set->count : 0.0;
         fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", mean[0], mean[1],
@@ -206,9 +253,7 @@ static int write_history_row(struct run *r)
             max_damage = r->frame.field[GSN_FRAME_DAMAGE][j];
     fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g\n", e->kinetic_energy,
             e->internal_energy, e->external_work, max_damage, e->damping_work);
-    fflush(r->history);
-    GSN_CHECK(!ferror(r->history), GSN_ERR_IO, "%s: cannot write",
-              r->history_path);
+    GSN_CALL(history_flush(r));
     return GSN_OK;
 }
 
@@ -290,8 +335,7 @@ static int write_checkpoint(struct run *r)
     GSN_CALL_GOTO(
         gsn_h5_attr_write_int(group, GSN_FRAME_ATTR_STEP, (int)e->step), rc,
         done);
-    GSN_CHECK_GOTO(H5Fflush(r->results, H5F_SCOPE_GLOBAL) >= 0, rc, GSN_ERR_IO,
-                   done, "%s: cannot flush", r->results_temporary);
+    GSN_CALL_GOTO(gsn_h5_flush(r->results), rc, done);
 done:
     gsn_h5_close(&group);
     return rc;
@@ -301,10 +345,10 @@ static int read_checkpoint(struct run *r)
 {
     struct gsn_explicit *e = r->explicit_loop;
     GSN_CHECK(gsn_h5_exists(r->results, GSN_CHECKPOINT_GROUP), GSN_ERR_INPUT,
-              "%s: no checkpoint to restart from", r->results_temporary);
+              "%s: no checkpoint to restart from", r->results_path);
     hid_t group = H5Gopen2(r->results, GSN_CHECKPOINT_GROUP, H5P_DEFAULT);
     GSN_CHECK(group >= 0, GSN_ERR_IO, "%s: cannot open the checkpoint",
-              r->results_temporary);
+              r->results_path);
     int rc = GSN_OK, step = 0;
     double energy[4];
     GSN_CALL_GOTO(checkpoint_transfer(r, 0, energy), rc, done);
@@ -346,6 +390,7 @@ static int read_checkpoint(struct run *r)
     e->internal_energy = energy[1];
     e->external_work = energy[2];
     e->damping_work = energy[3];
+    apply_loads(r, e->time);
     GSN_CALL_GOTO(gsn_explicit_refresh(e), rc, done);
 done:
     gsn_h5_close(&group);
@@ -591,10 +636,14 @@ static int run_loop(struct run *r)
     struct gsn_explicit *e = r->explicit_loop;
     double started = now_seconds(), last_print = started;
     long first = e->step;
-    int quiet = r->options->quiet;
+    int quiet = r->options->quiet, tty = isatty(STDERR_FILENO);
+    double interval = r->options->progress_seconds > 0.0
+                          ? r->options->progress_seconds
+                          : PROGRESS_INTERVAL;
     while (e->step < r->total_steps) {
         if (stop_signal)
             return stop_for_signal(r);
+        apply_loads(r, (double)(e->step + 1) * e->dt);
         GSN_CALL(gsn_explicit_step(e));
         GSN_CALL(check_energy(r));
         /* Frames at the steps nearest the frame times before the end, and
@@ -615,11 +664,15 @@ static int run_loop(struct run *r)
         if (due || last || row_due)
             r->next_row_time =
                 next_multiple(r->c->history_every, e->time, e->dt);
+        /* On a terminal a line rewritten twice a second; into a file, a
+         * line at every tenth of the run and every progress interval. */
         double t = now_seconds();
-        if (!quiet && (t - last_print > 0.5 || last) &&
-            (isatty(STDERR_FILENO) || last ||
-             (e->step * 10) / r->total_steps !=
-                 ((e->step - 1) * 10) / r->total_steps)) {
+        int tenth = (e->step * 10) / r->total_steps !=
+                    ((e->step - 1) * 10) / r->total_steps;
+        int print =
+            tty ? t - last_print > 0.5
+                : (tenth && t - last_print > 0.5) || t - last_print >= interval;
+        if (!quiet && (last || print)) {
             print_progress(r, started, first, last);
             last_print = t;
         }
@@ -766,12 +819,40 @@ static int check_not_interrupted(const struct run *r)
     return GSN_OK;
 }
 
+/* What a restart needs of the results it continues (open, read-only):
+ * the same model.h5, the same case (check_restart_case) and a checkpoint
+ * it can continue from, which is read. */
+static int check_restart(struct run *r, const char *model_hash,
+                         int *was_complete)
+{
+    char *stored = NULL;
+    if (H5Aexists(r->results, GSN_RESULTS_ATTR_MODEL_HASH) > 0)
+        GSN_CALL(gsn_h5_attr_read_string(r->results,
+                                         GSN_RESULTS_ATTR_MODEL_HASH, &stored));
+    int same = !stored || strcmp(stored, model_hash) == 0;
+    free(stored);
+    GSN_CHECK(same, GSN_ERR_INPUT,
+              "%s: --restart continues the run in %s, but %s changed since "
+              "it started (pre ran again?): its particles are not the "
+              "checkpoint's; start over without --restart",
+              r->c->path, r->results_path, r->model_path);
+    GSN_CALL(gsn_h5_attr_read_int(r->results, GSN_RESULTS_ATTR_COMPLETE,
+                                  was_complete));
+    GSN_CALL(check_restart_case(r));
+    GSN_CALL(read_checkpoint(r));
+    GSN_CHECK(access(r->history_path, R_OK) == 0, GSN_ERR_INPUT,
+              "%s: missing; cannot restart (start over without --restart)",
+              r->history_path);
+    return GSN_OK;
+}
+
 /* Opens results and history for a fresh run, or for a restart from the
  * checkpoint of an earlier run's results (complete or cut short). */
 static int open_outputs(struct run *r)
 {
     struct gsn_explicit *e = r->explicit_loop;
-    char *case_yaml = NULL;
+    char *case_yaml = NULL, model_hash[GSN_FILE_HASH_SIZE];
+    GSN_CALL(gsn_file_hash(r->model_path, model_hash));
     if (!r->options->restart) {
         GSN_CALL(check_not_interrupted(r));
         GSN_CALL(gsn_case_to_yaml_string(r->c, &case_yaml));
@@ -781,8 +862,11 @@ static int open_outputs(struct run *r)
         GSN_CALL(rc);
         GSN_CALL(gsn_h5_attr_write_string(
             r->results, GSN_RESULTS_ATTR_CASE_NAME, r->case_name));
+        GSN_CALL(gsn_h5_attr_write_string(
+            r->results, GSN_RESULTS_ATTR_MODEL_HASH, model_hash));
         r->history = fopen(r->history_path, "w");
-        GSN_CHECK(r->history, GSN_ERR_IO, "%s: cannot create", r->history_path);
+        if (!r->history)
+            return GSN_WRITE_ERROR(r->history_path, errno, "cannot create");
         GSN_CALL(write_history_header(r));
         GSN_CALL(write_output(r, 0)); /* the frame at t = 0 */
         schedule_outputs(r);
@@ -795,17 +879,20 @@ static int open_outputs(struct run *r)
               "%s: not found: there is no run to restart in %s; solve "
               "without --restart",
               r->results_path, r->outdir);
+    /* Checked where they are, read-only, so that a refused restart leaves
+     * the files as they were; then written under the temporary name. */
+    GSN_CALL(gsn_h5_open(part ? r->results_temporary : r->results_path,
+                         GSN_FILE_KIND_RESULTS, 0, &r->results));
+    int was_complete = 0;
+    int rc = check_restart(r, model_hash, &was_complete);
+    gsn_h5_close(&r->results);
+    GSN_CALL(rc);
     if (!part)
         GSN_CHECK(rename(r->results_path, r->results_temporary) == 0,
                   GSN_ERR_IO, "cannot rename %s for the restart",
                   r->results_path);
     GSN_CALL(gsn_h5_open(r->results_temporary, GSN_FILE_KIND_RESULTS, 1,
                          &r->results));
-    int was_complete = 0;
-    GSN_CALL(gsn_h5_attr_read_int(r->results, GSN_RESULTS_ATTR_COMPLETE,
-                                  &was_complete));
-    GSN_CALL(check_restart_case(r));
-    GSN_CALL(read_checkpoint(r));
     /* The case may have a later time.end: it is the case of the results. */
     GSN_CALL(gsn_case_to_yaml_string(r->c, &case_yaml));
     int written =
@@ -831,7 +918,6 @@ static int open_outputs(struct run *r)
     GSN_CHECK(old, GSN_ERR_INPUT, "%s: missing; cannot restart",
               r->history_path);
     r->history = fopen(temporary, "w");
-    int rc = GSN_OK;
     GSN_CHECK_GOTO(r->history, rc, GSN_ERR_IO, fail, "%s: cannot create",
                    temporary);
     int header = 1;
@@ -862,6 +948,7 @@ static void run_free(struct run *r)
     gsn_quadrature_destroy(&r->quadrature);
     gsn_model_free(&r->model);
     gsn_frame_free(&r->frame);
+    free(r->full_external);
     for (int b = 0; b < GSN_MAX_BOUNDARIES; ++b)
         free(r->boundary[b].particle);
     if (r->history)
@@ -952,6 +1039,104 @@ static long planned_frames(const struct run *r, double *frame_bytes)
     return frames;
 }
 
+/* A warning for gravity or tractions applied at full value at t = 0, with
+ * a ramp to suggest: SUDDEN_LOAD_PERIODS periods of the body's lowest mode,
+ * taken as a layer of height H on a fixed base, 4 H / c_s (H the body's
+ * extent along gravity, or its largest extent for tractions alone). */
+static void warn_sudden_load(const struct run *r, int gravity, int traction)
+{
+    const struct gsn_case *c = r->c;
+    const struct gsn_model *m = &r->model;
+    double g =
+        sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1] +
+             c->gravity[2] * c->gravity[2]);
+    double height = 0.0;
+    for (int axis = gravity ? -1 : 0; axis < (gravity ? 0 : 3); ++axis) {
+        double low = INFINITY, high = -INFINITY;
+        for (int i = 0; i < m->particle_count; ++i) {
+            const double *x = &m->position[3 * i];
+            double along = axis >= 0
+                               ? x[axis]
+                               : (x[0] * c->gravity[0] + x[1] * c->gravity[1] +
+                                  x[2] * c->gravity[2]) /
+                                     g;
+            low = fmin(low, along);
+            high = fmax(high, along);
+        }
+        height = fmax(height, high - low);
+    }
+    double period =
+        4.0 * height / sqrt(c->material.shear_modulus / c->material.density);
+    double ramp = SUDDEN_LOAD_PERIODS * period;
+    double unit = pow(10.0, floor(log10(ramp))); /* one significant digit up */
+    ramp = ceil(ramp / unit) * unit;
+    fprintf(stderr,
+            "warning: %s: %s applied at full value at t = 0 (time.ramp is "
+            "0): a sudden load makes the body ring about up to twice its "
+            "static deformation%s; with 'time: {ramp: %g}' the loads rise "
+            "smoothly (%g periods of the body's lowest mode, 4 H / c_s = "
+            "%.2g s with H = %.3g m), and prescribed velocities with them\n",
+            c->path,
+            gravity && traction ? "gravity and tractions are"
+            : gravity           ? "gravity is"
+                                : "tractions are",
+            c->material.has_damage
+                ? ", and damage, which counts every oscillation, grows"
+                : "",
+            ramp, SUDDEN_LOAD_PERIODS, period, height);
+}
+
+/* The dead loads: each traction added to f_ext (its resultant kept for
+ * history.csv), and f_ext kept at full value to be ramped with time.ramp
+ * (apply_loads); warnings for a case that nothing loads and for loads
+ * applied at once. */
+static int setup_loads(struct run *r)
+{
+    const struct gsn_case *c = r->c;
+    const struct gsn_quadrature *q = r->quadrature;
+    struct gsn_explicit *e = r->explicit_loop;
+    int traction = 0;
+    for (int b = 0; b < c->boundary_count; ++b) {
+        const struct gsn_boundary *entry = &c->boundaries[b];
+        for (int k = 0; k < 3; ++k) {
+            r->loading |= entry->has_velocity[k] && entry->velocity[k] != 0.0;
+            traction |= entry->traction[k] != 0.0;
+        }
+        if (!entry->has_traction[0])
+            continue;
+        int surface = gsn_model_find_surface(&r->model, entry->name);
+        gsn_explicit_add_traction(e, &r->model, surface, entry->traction);
+        /* t A: the shape functions add up to 1 at every facet point */
+        double area = 0.0;
+        for (int p = 0; p < q->boundary_point_count; ++p)
+            if (r->model.facet_surface[q->boundary_point_facet[p]] == surface)
+                area += q->boundary_point_weight[p];
+        for (int k = 0; k < 3; ++k)
+            r->traction_force[b][k] = entry->traction[k] * area;
+    }
+    int gravity =
+        c->gravity[0] != 0.0 || c->gravity[1] != 0.0 || c->gravity[2] != 0.0;
+    if (!r->loading && !traction && !gravity)
+        fprintf(stderr,
+                "warning: %s: nothing loads the body (no gravity, no nonzero "
+                "velocity or traction on a boundary): it stays at rest\n",
+                c->path);
+    r->applied_factor = 1.0;
+    if (!gravity && !traction)
+        return GSN_OK;
+    if (!(c->time_ramp > 0.0)) {
+        warn_sudden_load(r, gravity, traction);
+        return GSN_OK;
+    }
+    size_t bytes = 3 * (size_t)e->particle_count * sizeof(double);
+    r->full_external = malloc(bytes);
+    GSN_CHECK(r->full_external, GSN_ERR_MEMORY, "out of memory");
+    memcpy(r->full_external, e->f_ext, bytes);
+    apply_loads(r, 0.0);
+    GSN_CALL(gsn_explicit_refresh(e));
+    return GSN_OK;
+}
+
 static int run_setup(struct run *r)
 {
     const struct gsn_case *c = r->c;
@@ -977,26 +1162,7 @@ static int run_setup(struct run *r)
      * the quadrature's are freed, 709 MB of the working set on Slope I with
      * MSCNI (the peak memory is reached during set-up, before). */
     gsn_shape_rows_free(&r->quadrature->gradient);
-    for (int b = 0; b < c->boundary_count; ++b)
-        if (c->boundaries[b].has_traction[0])
-            gsn_explicit_add_traction(
-                r->explicit_loop, &r->model,
-                gsn_model_find_surface(&r->model, c->boundaries[b].name),
-                c->boundaries[b].traction);
-    int traction = 0;
-    for (int b = 0; b < c->boundary_count; ++b)
-        for (int k = 0; k < 3; ++k) {
-            r->loading |= c->boundaries[b].has_velocity[k] &&
-                          c->boundaries[b].velocity[k] != 0.0;
-            traction |= c->boundaries[b].traction[k] != 0.0;
-        }
-    int gravity =
-        c->gravity[0] != 0.0 || c->gravity[1] != 0.0 || c->gravity[2] != 0.0;
-    if (!r->loading && !traction && !gravity)
-        fprintf(stderr,
-                "warning: %s: nothing loads the body (no gravity, no nonzero "
-                "velocity or traction on a boundary): it stays at rest\n",
-                c->path);
+    GSN_CALL(setup_loads(r));
     r->damage_offset = gsn_material_state_offset(r->material->ops, "damage");
     r->plastic_offset = gsn_material_state_offset(r->material->ops,
                                                   "equivalent_plastic_strain");
