@@ -1070,12 +1070,16 @@ static void warn_sudden_load(const struct run *r, int gravity, int traction)
     double ramp = SUDDEN_LOAD_PERIODS * period;
     double unit = pow(10.0, floor(log10(ramp))); /* one significant digit up */
     ramp = ceil(ramp / unit) * unit;
+    char end[96] = "";
+    if (ramp > c->time_end)
+        snprintf(end, sizeof end, " (and time.end %g s at least)", ramp);
     fprintf(stderr,
             "warning: %s: %s applied at full value at t = 0 (time.ramp is "
-            "0): a sudden load makes the body ring about up to twice its "
-            "static deformation%s; with 'time: {ramp: %g}' the loads rise "
-            "smoothly (%g periods of the body's lowest mode, 4 H / c_s = "
-            "%.2g s with H = %.3g m), and prescribed velocities with them\n",
+            "0): a sudden load makes the body oscillate about its static "
+            "deformation, up to twice it%s; 'time: {ramp: %g}'%s raises the "
+            "loads smoothly over %g periods of the body's lowest mode (4 H / "
+            "c_s = %.2g s with H = %.3g m), and prescribed velocities with "
+            "them\n",
             c->path,
             gravity && traction ? "gravity and tractions are"
             : gravity           ? "gravity is"
@@ -1083,7 +1087,7 @@ static void warn_sudden_load(const struct run *r, int gravity, int traction)
             c->material.has_damage
                 ? ", and damage, which counts every oscillation, grows"
                 : "",
-            ramp, SUDDEN_LOAD_PERIODS, period, height);
+            ramp, end, SUDDEN_LOAD_PERIODS, period, height);
 }
 
 /* The dead loads: each traction added to f_ext (its resultant kept for
