@@ -676,6 +676,12 @@ int main(int argc, char **argv)
     if (rc != GSN_OK) {
         fprintf(stderr, "geoscni %s: ", command->name);
         gsn_error_print_user(stderr, a.verbose);
+        /* HDF5 1.10 crashes at exit (H5F__close_cb) on a file whose close
+         * failed, as on a full disk: end without its exit handlers */
+        if (rc == GSN_ERR_NO_SPACE) {
+            fflush(NULL);
+            _exit(gsn_error_exit_status(rc));
+        }
         return gsn_error_exit_status(rc);
     }
     return 0;
