@@ -545,9 +545,11 @@ static int read_material(struct reader *r, const yaml_node_t *root,
                            &m->bulk_modulus));
     GSN_CALL(read_positive(r, node, "material", "shear_modulus", "Pa", 1,
                            &m->shear_modulus));
-    m->line_density = node_line(mapping_find(r, node, "density"));
-    m->line_bulk_modulus = node_line(mapping_find(r, node, "bulk_modulus"));
-    m->line_shear_modulus = node_line(mapping_find(r, node, "shear_modulus"));
+    c->material_line.density = node_line(mapping_find(r, node, "density"));
+    c->material_line.bulk_modulus =
+        node_line(mapping_find(r, node, "bulk_modulus"));
+    c->material_line.shear_modulus =
+        node_line(mapping_find(r, node, "shear_modulus"));
 
     yaml_node_t *damage = mapping_find(r, node, "damage");
     if (damage) {
@@ -582,7 +584,7 @@ static int read_material(struct reader *r, const yaml_node_t *root,
                              m->dp_alpha, 0.0, 0, ""));
         GSN_CALL(check_lower(r, line_R, "material.drucker_prager.R", m->dp_R,
                              0.0, 0, "Pa"));
-        m->line_R = line_R;
+        c->material_line.R = line_R;
         m->dp_dilatancy = m->dp_alpha; /* associated flow by default */
         int line_beta = line_alpha;
         GSN_CALL(read_number(r, dp, "material.drucker_prager", "dilatancy",

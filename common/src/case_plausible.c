@@ -50,7 +50,7 @@ static void check_density(FILE *out, const struct gsn_case *c, int *count)
     else
         snprintf(text + n, sizeof text - (size_t)n,
                  ": check its unit (kg/m^3)");
-    warn(out, c, c->material.line_density, text, count);
+    warn(out, c, c->material_line.density, text, count);
 }
 
 static void check_modulus(FILE *out, const struct gsn_case *c, const char *key,
@@ -80,10 +80,10 @@ int gsn_case_warn_implausible(const struct gsn_case *c, FILE *out)
     int count = 0;
     char text[512];
     check_density(out, c, &count);
-    check_modulus(out, c, "bulk_modulus", m->bulk_modulus, m->line_bulk_modulus,
-                  &count);
+    check_modulus(out, c, "bulk_modulus", m->bulk_modulus,
+                  c->material_line.bulk_modulus, &count);
     check_modulus(out, c, "shear_modulus", m->shear_modulus,
-                  m->line_shear_modulus, &count);
+                  c->material_line.shear_modulus, &count);
     /* Poisson's ratio (3K - 2mu) / (2 (3K + mu)) < 0: mu > 1.5 K */
     if (m->shear_modulus > 1.5 * m->bulk_modulus) {
         snprintf(text, sizeof text,
@@ -93,20 +93,20 @@ int gsn_case_warn_implausible(const struct gsn_case *c, FILE *out)
                  m->shear_modulus, m->bulk_modulus,
                  (3.0 * m->bulk_modulus - 2.0 * m->shear_modulus) /
                      (2.0 * (3.0 * m->bulk_modulus + m->shear_modulus)));
-        warn(out, c, m->line_shear_modulus, text, &count);
+        warn(out, c, c->material_line.shear_modulus, text, &count);
     } else if (m->bulk_modulus > MODULUS_RATIO_HIGH * m->shear_modulus) {
         snprintf(text, sizeof text,
                  "material.bulk_modulus (%g Pa) is over %g times "
                  "shear_modulus (%g Pa): are both in Pa?",
                  m->bulk_modulus, MODULUS_RATIO_HIGH, m->shear_modulus);
-        warn(out, c, m->line_bulk_modulus, text, &count);
+        warn(out, c, c->material_line.bulk_modulus, text, &count);
     }
     if (m->has_plasticity && m->dp_R > 0.0 && m->dp_R < STRENGTH_LOW) {
         snprintf(text, sizeof text,
                  "material.drucker_prager.R = %g Pa is a very weak soil "
                  "(below %g Pa): if it is given in kPa, write %g",
                  m->dp_R, STRENGTH_LOW, m->dp_R * 1e3);
-        warn(out, c, m->line_R, text, &count);
+        warn(out, c, c->material_line.R, text, &count);
     }
     return count;
 }

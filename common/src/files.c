@@ -110,8 +110,8 @@ int gsn_write_error_raise(const char *file, int line, const char *func,
         file_system_full(path))
         return gsn_error_raise(
             GSN_ERR_NO_SPACE, file, line, func,
-            "%s: %s: no space left on device%s; free some space there, or "
-            "write to another folder with -o",
+            "%s: %s: no space left on device%s; free some space on it, or "
+            "choose an output folder on another disk",
             path, what, error_number == EDQUOT ? " (disk quota exceeded)" : "");
     if (error_number != 0)
         return gsn_error_raise(GSN_ERR_IO, file, line, func, "%s: %s: %s", path,
@@ -143,7 +143,7 @@ int gsn_folder_lock(const char *folder, int *lock)
         return GSN_WRITE_ERROR(path, errno, "cannot create the lock file");
     GSN_CHECK(fd >= 0, GSN_ERR_INPUT,
               "%s: cannot create the lock file of the output folder: %s; "
-              "choose another folder with -o",
+              "the output folder must be writable",
               path, strerror(errno));
     if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
         int error_number = errno;
@@ -151,7 +151,7 @@ int gsn_folder_lock(const char *folder, int *lock)
         close(fd);
         GSN_CHECK(error_number != EWOULDBLOCK, GSN_ERR_BUSY,
                   "%s is in use by another geoscni (pid %ld): wait until it "
-                  "ends, or write to another folder with -o",
+                  "ends, or choose another output folder",
                   folder, owner);
         GSN_CHECK(0, GSN_ERR_IO, "%s: cannot lock: %s", path,
                   strerror(error_number));

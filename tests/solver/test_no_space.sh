@@ -31,7 +31,7 @@ sed -e "s#^geometry: .*#geometry: $root/geometries/box.geo#" -e 's/end: 1000/end
 # expect_full WHAT FILE_PATTERN: the last command's exit status and message
 expect_full() {
     [ "$status" -eq 1 ] || fail "$1: exit status $status, expected 1: $(cat "$out/err")"
-    grep -q "error: $disk/out/$2: .*: no space left on device; free some space there, or write to another folder with -o" "$out/err" ||
+    grep -q "error: $disk/out/$2: .*: no space left on device; free some space on it, or choose an output folder on another disk" "$out/err" ||
         fail "$1: message: $(cat "$out/err")"
     grep -q "bad input" "$out/err" && fail "$1: says bad input"
     echo "$1: $(grep error: "$out/err")"

@@ -86,8 +86,6 @@ struct gsn_material {
     double dp_alpha;      /* friction coefficient alpha, - */
     double dp_R;          /* cohesion-like R, Pa */
     double dp_dilatancy;  /* beta of the potential; = alpha: associated */
-    /* lines of the keys in the case file (0: not given), for messages */
-    int line_density, line_bulk_modulus, line_shear_modulus, line_R;
 };
 
 struct gsn_case {
@@ -103,6 +101,11 @@ struct gsn_case {
     enum gsn_stabilization stabilization;
     double stabilization_coefficient; /* MSCNI weight of the sub-cells */
     struct gsn_material material;
+    /* lines of the material's keys in the case file (0: not given), for
+     * messages */
+    struct {
+        int density, bulk_modulus, shear_modulus, R;
+    } material_line;
     double gravity[3]; /* m/s^2 */
     int boundary_count;
     struct gsn_boundary boundaries[GSN_MAX_BOUNDARIES];
