@@ -836,8 +836,10 @@ static int check_restart(struct run *r, const char *model_hash,
               "it started (pre ran again?): its particles are not the "
               "checkpoint's; start over without --restart",
               r->c->path, r->results_path, r->model_path);
-    GSN_CALL(gsn_h5_attr_read_int(r->results, GSN_RESULTS_ATTR_COMPLETE,
-                                  was_complete));
+    *was_complete = 0; /* a run killed before its first flush lacks it */
+    if (H5Aexists(r->results, GSN_RESULTS_ATTR_COMPLETE) > 0)
+        GSN_CALL(gsn_h5_attr_read_int(r->results, GSN_RESULTS_ATTR_COMPLETE,
+                                      was_complete));
     GSN_CALL(check_restart_case(r));
     GSN_CALL(read_checkpoint(r));
     GSN_CHECK(access(r->history_path, R_OK) == 0, GSN_ERR_INPUT,
@@ -864,6 +866,9 @@ static int open_outputs(struct run *r)
             r->results, GSN_RESULTS_ATTR_CASE_NAME, r->case_name));
         GSN_CALL(gsn_h5_attr_write_string(
             r->results, GSN_RESULTS_ATTR_MODEL_HASH, model_hash));
+        /* before the first frame's flush: a run killed after it has it */
+        GSN_CALL(
+            gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_COMPLETE, 0));
         r->history = fopen(r->history_path, "w");
         if (!r->history)
             return GSN_WRITE_ERROR(r->history_path, errno, "cannot create");
