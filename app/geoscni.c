@@ -25,7 +25,7 @@ struct arguments {
     const char *cases[MAX_CASES];
     int case_count;
     const char *outdir;
-    int force, restart, quiet, no_pictures, threads, rerun;
+    int force, restart, quiet, no_pictures, threads, rerun, verbose;
 };
 
 /* The options: each command takes -h and -q, and those of its mask. */
@@ -38,7 +38,9 @@ enum option_bit {
     OPTION_NO_PICTURES = 1 << 5,
     OPTION_HELP = 1 << 6,
     OPTION_QUIET = 1 << 7,
-    OPTION_GENERAL = OPTION_HELP | OPTION_QUIET /* every command's */
+    OPTION_VERBOSE = 1 << 8,
+    OPTION_GENERAL = OPTION_HELP | OPTION_QUIET | OPTION_VERBOSE /* every
+                                                                   command's */
 };
 
 static const struct option {
@@ -48,6 +50,7 @@ static const struct option {
 } command_options[] = {
     {"-h", "--help", OPTION_HELP, NULL},
     {"-q", "--quiet", OPTION_QUIET, NULL},
+    {"-v", "--verbose", OPTION_VERBOSE, NULL},
     {"-o", "--output", OPTION_OUTPUT, "a folder"},
     {"-j", "--threads", OPTION_THREADS, "a number"},
     {NULL, "--force", OPTION_FORCE, NULL},
@@ -68,8 +71,10 @@ struct command {
     int option_mask;
 };
 
-static const char general_options[] = "  -h, --help       this help\n"
-                                      "  -q, --quiet      no progress output\n";
+static const char general_options[] =
+    "  -h, --help       this help\n"
+    "  -q, --quiet      no progress output\n"
+    "  -v, --verbose    errors with where they were raised in geoscni\n";
 
 #define THREADS_HELP "  -j, --threads N  OpenMP threads (default: all cores)\n"
 
@@ -99,12 +104,17 @@ static int run_pre(const struct gsn_case *c, const char *outdir,
 static int run_solve(const struct gsn_case *c, const char *outdir,
                      const struct arguments *a, int restart)
 {
-    /* run --rerun starts over, also over an interrupted run's results */
-    struct gsn_solve_options options = {.force = a->force,
-                                        .restart = restart,
-                                        .threads = a->threads,
-                                        .quiet = a->quiet,
-                                        .start_over = a->rerun};
+    /* run --rerun starts over, also over an interrupted run's results;
+     * GEOSCNI_PROGRESS_SECONDS sets the interval of the progress lines
+     * written to a file (solver.h) */
+    const char *interval = getenv("GEOSCNI_PROGRESS_SECONDS");
+    struct gsn_solve_options options = {
+        .force = a->force,
+        .restart = restart,
+        .threads = a->threads,
+        .quiet = a->quiet,
+        .start_over = a->rerun,
+        .progress_seconds = interval ? strtod(interval, NULL) : 0.0};
     GSN_CALL(gsn_solve_run(c, outdir, &options));
     return GSN_OK;
 }
@@ -159,6 +169,8 @@ static int command_check(const struct arguments *a)
         char *text = NULL;
         int rc = gsn_case_load(a->cases[i], &c);
         if (rc == GSN_OK)
+            gsn_case_warn_implausible(&c, stderr);
+        if (rc == GSN_OK)
             rc = gsn_pre_check_geometry(&c);
         if (rc == GSN_OK && !a->quiet)
             rc = gsn_case_to_yaml_string(&c, &text);
@@ -167,7 +179,7 @@ static int command_check(const struct arguments *a)
         free(text);
         if (rc != GSN_OK && a->case_count > 1) {
             fprintf(stderr, "geoscni check: ");
-            gsn_error_print(stderr);
+            gsn_error_print_user(stderr, a->verbose);
             gsn_error_clear();
         }
         if (first_failure == GSN_OK)
@@ -180,12 +192,26 @@ static int command_check(const struct arguments *a)
     return GSN_OK;
 }
 
+/* Creates outdir and takes its lock (files.h, gsn_folder_lock): a second
+ * geoscni that would write it is refused. The lock is held until the
+ * process ends, so for the whole command. */
+static int lock_outdir(const char *outdir)
+{
+    int lock = -1;
+    GSN_CALL(gsn_folder_prepare(outdir));
+    GSN_CALL(gsn_folder_lock(outdir, &lock));
+    return GSN_OK;
+}
+
 static int command_pre(const struct arguments *a)
 {
     struct gsn_case c;
     char buffer[GSN_PATH_SIZE];
     GSN_CALL(gsn_case_load(a->cases[0], &c));
-    GSN_CALL(run_pre(&c, outdir_for(a, a->cases[0], buffer, sizeof buffer), a));
+    gsn_case_warn_implausible(&c, stderr);
+    const char *outdir = outdir_for(a, a->cases[0], buffer, sizeof buffer);
+    GSN_CALL(lock_outdir(outdir));
+    GSN_CALL(run_pre(&c, outdir, a));
     return GSN_OK;
 }
 
@@ -194,27 +220,22 @@ static int command_solve(const struct arguments *a)
     struct gsn_case c;
     char buffer[GSN_PATH_SIZE];
     GSN_CALL(gsn_case_load(a->cases[0], &c));
-    GSN_CALL(run_solve(&c, outdir_for(a, a->cases[0], buffer, sizeof buffer), a,
-                       a->restart));
+    gsn_case_warn_implausible(&c, stderr);
+    const char *outdir = outdir_for(a, a->cases[0], buffer, sizeof buffer);
+    GSN_CALL(lock_outdir(outdir));
+    GSN_CALL(run_solve(&c, outdir, a, a->restart));
     return GSN_OK;
 }
 
 static int command_post(const struct arguments *a)
 {
+    /* a folder that does not exist is post's own error (no results) */
+    struct stat info;
+    int lock = -1;
+    if (stat(a->cases[0], &info) == 0 && S_ISDIR(info.st_mode))
+        GSN_CALL(gsn_folder_lock(a->cases[0], &lock));
     GSN_CALL(run_post(a->cases[0], a));
     return GSN_OK;
-}
-
-/* 1 if path exists and was modified no earlier than reference (which must
- * exist too). */
-static int newer_than(const char *path, const char *reference)
-{
-    struct stat a, b;
-    if (stat(path, &a) != 0 || stat(reference, &b) != 0)
-        return 0;
-    if (a.st_mtim.tv_sec != b.st_mtim.tv_sec)
-        return a.st_mtim.tv_sec > b.st_mtim.tv_sec;
-    return a.st_mtim.tv_nsec >= b.st_mtim.tv_nsec;
 }
 
 /* 1 if a string attribute of an HDF5 file of the given kind equals value
@@ -242,24 +263,41 @@ static int file_attribute_matches(const char *path, const char *kind,
     return same;
 }
 
-/* Whether a stage's output is newer than its inputs and was made from the
- * same parameters, so that run can skip it. */
+/* The hash of path as text, "" if it cannot be read. */
+static void hash_or_empty(const char *path, char out[GSN_FILE_HASH_SIZE])
+{
+    if (gsn_file_hash(path, out) != GSN_OK) {
+        gsn_error_clear();
+        out[0] = '\0';
+    }
+}
+
+/* Whether a stage's output was made from the same parameters and from
+ * inputs of the same contents (their hashes stored in the output: the
+ * geometry's in model.h5, model.h5's in results.h5, results.h5's in the
+ * .pvd), so that run can skip it. Modification times play no part: a
+ * touched or copied file is not a changed one. */
 static int stage_up_to_date(const char *stage, const struct gsn_case *c,
-                            const char *outdir)
+                            const char *outdir, const struct arguments *a)
 {
     char model[GSN_PATH_SIZE + 16], results[GSN_PATH_SIZE + 16];
-    char pvd[2 * GSN_PATH_SIZE + 8], name[GSN_PATH_SIZE];
+    char history[GSN_PATH_SIZE + 16], hash[GSN_FILE_HASH_SIZE];
     snprintf(model, sizeof model, "%s/model.h5", outdir);
     snprintf(results, sizeof results, "%s/results.h5", outdir);
+    snprintf(history, sizeof history, "%s/history.csv", outdir);
     if (!strcmp(stage, "pre")) {
         char signature[GSN_PRE_SIGNATURE_SIZE];
         if (gsn_case_pre_signature(c, signature, sizeof signature) != GSN_OK) {
             gsn_error_clear();
             return 0;
         }
-        return newer_than(model, c->geometry) &&
+        hash_or_empty(c->geometry, hash);
+        return hash[0] &&
                file_attribute_matches(model, GSN_FILE_KIND_MODEL,
-                                      GSN_ATTR_PRE_SIGNATURE, signature, NULL);
+                                      GSN_ATTR_PRE_SIGNATURE, signature,
+                                      NULL) &&
+               file_attribute_matches(model, GSN_FILE_KIND_MODEL,
+                                      GSN_ATTR_GEOMETRY_HASH, hash, NULL);
     }
     if (!strcmp(stage, "solve")) {
         char *yaml = NULL;
@@ -267,26 +305,30 @@ static int stage_up_to_date(const char *stage, const struct gsn_case *c,
             gsn_error_clear();
             return 0;
         }
-        int same = newer_than(results, model) &&
-                   file_attribute_matches(results, GSN_FILE_KIND_RESULTS,
-                                          GSN_ATTR_CASE, yaml,
-                                          GSN_RESULTS_ATTR_COMPLETE);
+        hash_or_empty(model, hash);
+        int same =
+            hash[0] && access(history, R_OK) == 0 &&
+            file_attribute_matches(results, GSN_FILE_KIND_RESULTS,
+                                   GSN_ATTR_CASE, yaml,
+                                   GSN_RESULTS_ATTR_COMPLETE) &&
+            file_attribute_matches(results, GSN_FILE_KIND_RESULTS,
+                                   GSN_RESULTS_ATTR_MODEL_HASH, hash, NULL);
         free(yaml);
         return same;
     }
-    gsn_case_name(c->path, name, sizeof name);
-    snprintf(pvd, sizeof pvd, "%s/%s.pvd", outdir, name);
-    return newer_than(pvd, results);
+    struct gsn_post_options options = {.no_pictures = a->no_pictures};
+    return gsn_post_up_to_date(outdir, &options);
 }
 
 static int run_skipped(const struct arguments *a, const char *stage,
                        const struct gsn_case *c, const char *outdir)
 {
-    if (a->rerun || !stage_up_to_date(stage, c, outdir))
+    if (a->rerun || !stage_up_to_date(stage, c, outdir, a))
         return 0;
     if (!a->quiet)
-        printf("run: %s skipped: its output in %s is newer than its inputs "
-               "and was made from the same parameters (--rerun to redo)\n",
+        printf("run: %s skipped: its output in %s was made from the same "
+               "parameters and inputs of the same contents (--rerun to "
+               "redo)\n",
                stage, outdir);
     return 1;
 }
@@ -314,12 +356,12 @@ static int run_case(const struct arguments *a, const struct gsn_case *c,
     if (rc == GSN_ERR_NUMERICAL) {
         /* Show what the run reached before it failed, then fail. */
         fprintf(stderr, "geoscni run: ");
-        gsn_error_print(stderr);
+        gsn_error_print_user(stderr, a->verbose);
         fprintf(stderr, "geoscni run: post-processing the frames "
                         "written before the failure\n");
         gsn_error_clear();
         if (run_post(outdir, a) != GSN_OK) {
-            gsn_error_print(stderr);
+            gsn_error_print_user(stderr, a->verbose);
             gsn_error_clear();
         }
         GSN_CHECK(0, GSN_ERR_NUMERICAL,
@@ -335,24 +377,39 @@ static int run_case(const struct arguments *a, const struct gsn_case *c,
 
 static int command_run(const struct arguments *a)
 {
-    /* Every case file is checked before any work starts. */
+    /* Every case file is checked before any work starts, and every output
+     * folder locked: cases whose files have the same name would write one
+     * folder, the second over the first, so they are refused. */
     static struct gsn_case cases[MAX_CASES];
+    static char outdirs[MAX_CASES][GSN_PATH_SIZE];
     for (int i = 0; i < a->case_count; ++i) {
         GSN_CALL(gsn_case_load(a->cases[i], &cases[i]));
+        gsn_case_warn_implausible(&cases[i], stderr);
         GSN_CALL(gsn_pre_check_geometry(&cases[i]));
+        const char *outdir =
+            outdir_for(a, a->cases[i], outdirs[i], sizeof outdirs[i]);
+        if (outdir != outdirs[i])
+            snprintf(outdirs[i], sizeof outdirs[i], "%s", outdir);
+        for (int j = 0; j < i; ++j)
+            GSN_CHECK(strcmp(outdirs[i], outdirs[j]) != 0, GSN_ERR_INPUT,
+                      "%s and %s would both write to %s (the files have the "
+                      "same name): rename one, or run them with separate "
+                      "-o folders",
+                      a->cases[j], a->cases[i], outdirs[i]);
     }
+    for (int i = 0; i < a->case_count; ++i)
+        GSN_CALL(lock_outdir(outdirs[i]));
     /* A case that fails does not stop the others, except an interrupt. */
     int first_failure = GSN_OK, failed = 0, ran = 0;
     for (int i = 0; i < a->case_count; ++i, ++ran) {
-        char buffer[GSN_PATH_SIZE];
-        const char *outdir = outdir_for(a, a->cases[i], buffer, sizeof buffer);
+        const char *outdir = outdirs[i];
         int rc = run_case(a, &cases[i], outdir);
         if (rc == GSN_OK)
             continue;
         if (a->case_count == 1)
             return rc;
         fprintf(stderr, "geoscni run: ");
-        gsn_error_print(stderr);
+        gsn_error_print_user(stderr, a->verbose);
         gsn_error_clear();
         failed++;
         if (first_failure == GSN_OK || rc == GSN_ERR_INTERRUPTED)
@@ -392,8 +449,8 @@ static const struct command commands[] = {
      "folder", OPTION_NO_PICTURES},
     {"run", "geoscni run CASE.yaml [CASE2.yaml ...] [-o OUTDIR] [--restart]",
      "pre, solve and post for each case, each into its own folder, skipping "
-     "a stage whose output is newer than its inputs and made from the same "
-     "parameters",
+     "a stage whose output was made from the same parameters and inputs of "
+     "the same contents",
      "  -o, --output DIR output folder (with several cases: a folder per "
      "case inside it)\n"
      "  --restart        resume an interrupted solve from the checkpoint in "
@@ -528,6 +585,8 @@ static int parse_arguments(const struct command *command, int argc, char **argv,
             *help = 1;
         } else if (o->bit == OPTION_QUIET) {
             a->quiet = 1;
+        } else if (o->bit == OPTION_VERBOSE) {
+            a->verbose = 1;
         } else if (o->bit == OPTION_OUTPUT) {
             if (!value[0])
                 return usage_error(command, "%s needs a folder", arg);
@@ -616,7 +675,13 @@ int main(int argc, char **argv)
     int rc = command->run(&a);
     if (rc != GSN_OK) {
         fprintf(stderr, "geoscni %s: ", command->name);
-        gsn_error_print(stderr);
+        gsn_error_print_user(stderr, a.verbose);
+        /* HDF5 1.10 crashes at exit (H5F__close_cb) on a file whose close
+         * failed, as on a full disk: end without its exit handlers */
+        if (rc == GSN_ERR_NO_SPACE) {
+            fflush(NULL);
+            _exit(gsn_error_exit_status(rc));
+        }
         return gsn_error_exit_status(rc);
     }
     return 0;

@@ -18,7 +18,7 @@ economy_setup() {
 # (default 0.025), interpolated linearly between the history's rows.
 curve() {
     awk -F, -v step="${2:-0.025}" '
-        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_uz") u = i; if ($i == "footing_fz") f = i }; next }
+        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i ~ /^footing_uz(_m)?$/) u = i; if ($i ~ /^footing_fz(_N)?$/) f = i }; next }
         { s = -$u; q = -$f / 1e6
           while (next_s + step <= s + 1e-12) { next_s += step
               printf "%.3f %.6f\n", next_s, prev_q + (q - prev_q) * (next_s - prev_s) / (s - prev_s) }
@@ -43,7 +43,7 @@ run() {
 # (default 1), in MN, and the settlement where it occurs.
 peak() {
     awk -F, -v factor="${2:-1}" '
-        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_fz") f = i; if ($i == "footing_uz") u = i } next }
+        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i ~ /^footing_fz(_N)?$/) f = i; if ($i ~ /^footing_uz(_m)?$/) u = i } next }
         { v = ($f < 0 ? -$f : $f) * factor; if (v > best) { best = v; at = -$u } }
         END { printf "%.4f %.4f", best / 1e6, at }' "$work/$1/history.csv"
 }

@@ -44,7 +44,7 @@ for name in $cases; do
     post=$(elapsed "$t")
     particles=$(h5ls "$out/$name/model.h5/particles/position" | sed -n 's/.*{\([0-9]*\),.*/\1/p')
     steps=$(tail -1 "$out/$name/history.csv" | cut -d, -f2)
-    peak=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_uz") u = i; if ($i == "footing_fz") f = i }; next }
+    peak=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) { if ($i ~ /^footing_uz(_m)?$/) u = i; if ($i ~ /^footing_fz(_N)?$/) f = i }; next }
         -$f > m { m = -$f; s = -$u } END { printf "%.2f MN at %.3f m", m / 1e6, s }' "$out/$name/history.csv")
     echo "  $particles particles, $steps steps; pre $pre s, solve $solve s, post $post s; peak footing load $peak"
     grep -E "quasi-static|warning" "$out/$name/solve.log" | sed 's/^/  /' || true

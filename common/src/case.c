@@ -545,6 +545,11 @@ static int read_material(struct reader *r, const yaml_node_t *root,
                            &m->bulk_modulus));
     GSN_CALL(read_positive(r, node, "material", "shear_modulus", "Pa", 1,
                            &m->shear_modulus));
+    c->material_line.density = node_line(mapping_find(r, node, "density"));
+    c->material_line.bulk_modulus =
+        node_line(mapping_find(r, node, "bulk_modulus"));
+    c->material_line.shear_modulus =
+        node_line(mapping_find(r, node, "shear_modulus"));
 
     yaml_node_t *damage = mapping_find(r, node, "damage");
     if (damage) {
@@ -579,6 +584,7 @@ static int read_material(struct reader *r, const yaml_node_t *root,
                              m->dp_alpha, 0.0, 0, ""));
         GSN_CALL(check_lower(r, line_R, "material.drucker_prager.R", m->dp_R,
                              0.0, 0, "Pa"));
+        c->material_line.R = line_R;
         m->dp_dilatancy = m->dp_alpha; /* associated flow by default */
         int line_beta = line_alpha;
         GSN_CALL(read_number(r, dp, "material.drucker_prager", "dilatancy",
@@ -792,7 +798,8 @@ static int read_kinematics(struct reader *r, const yaml_node_t *root,
 static int read_reference_update(struct reader *r, const yaml_node_t *root,
                                  struct gsn_case *c)
 {
-    static const char *const keys[] = {"strain", "volume", "every", NULL};
+    static const char *const keys[] = {"strain", "volume", "every", "min_steps",
+                                       NULL};
     static const char *const words[] = {"off", "on", NULL};
     c->reference_update =
         !c->small_strain && c->integration != GSN_INTEGRATION_GAUSS;
@@ -831,6 +838,15 @@ static int read_reference_update(struct reader *r, const yaml_node_t *root,
         }
         GSN_CALL(read_positive(r, node, "reference_update", "every", "s", 0,
                                &c->reference_every));
+        yaml_node_t *steps = mapping_find(r, node, "min_steps");
+        if (steps) {
+            GSN_CALL(parse_integer(r, steps, "reference_update.min_steps",
+                                   &c->reference_min_steps));
+            GSN_CHECK(c->reference_min_steps >= 1, GSN_ERR_INPUT,
+                      "%s:%d: 'reference_update.min_steps' (steps between "
+                      "two updates at least) must be 1 or more, got %d",
+                      r->path, node_line(steps), c->reference_min_steps);
+        }
     }
     GSN_CHECK(index == 0 || !c->small_strain, GSN_ERR_INPUT,
               "%s:%d: 'reference_update' needs 'kinematics: large': with "
@@ -894,6 +910,7 @@ static void case_set_defaults(struct gsn_case *c)
     c->reference_strain = GSN_DEFAULT_REFERENCE_STRAIN;
     c->reference_volume[0] = GSN_DEFAULT_REFERENCE_VOLUME_MIN;
     c->reference_volume[1] = GSN_DEFAULT_REFERENCE_VOLUME_MAX;
+    c->reference_min_steps = GSN_DEFAULT_REFERENCE_MIN_STEPS;
 }
 
 static int read_document(struct reader *r, struct gsn_case *c)

@@ -120,6 +120,24 @@ void gsn_error_print(void *stream)
     pthread_mutex_unlock(&error_chain.lock);
 }
 
+void gsn_error_print_user(void *stream, int verbose)
+{
+    if (verbose) {
+        gsn_error_print(stream);
+        return;
+    }
+    FILE *out = stream ? (FILE *)stream : stderr;
+    pthread_mutex_lock(&error_chain.lock);
+    fprintf(out, "error: %s\n", error_chain.message);
+    if (error_chain.code == GSN_ERR_INTERNAL ||
+        error_chain.code == GSN_ERR_LIBRARY)
+        fprintf(out,
+                "  (%s: run again with --verbose and report what it "
+                "prints)\n",
+                error_texts[error_chain.code]);
+    pthread_mutex_unlock(&error_chain.lock);
+}
+
 void gsn_error_clear(void)
 {
     pthread_mutex_lock(&error_chain.lock);

@@ -2,14 +2,36 @@
  * checked here and turned into a message that names the file and dataset. */
 #include "geoscni/h5io.h"
 #include "geoscni/error.h"
+#include "geoscni/files.h"
 #include "geoscni/version.h"
 
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
 static void h5_quiet(void)
 {
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+}
+
+static herr_t h5_errno_walk(unsigned n, const H5E_error2_t *error, void *data)
+{
+    (void)n;
+    int *found = data;
+    const char *at = error->desc ? strstr(error->desc, "errno = ") : NULL;
+    if (at && *found == 0)
+        *found = atoi(at + 8);
+    return 0;
+}
+
+/* The errno behind the HDF5 call that just failed: its file driver's
+ * message in the error stack says "errno = N" (HDF5's own calls since may
+ * have changed errno); else errno. Call before any other HDF5 call. */
+static int h5_failure_errno(void)
+{
+    int found = 0, saved = errno;
+    H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, h5_errno_walk, &found);
+    return found ? found : saved;
 }
 
 /* The file name of a handle, for messages. */
@@ -119,12 +141,17 @@ static int h5_attr_write_scalar(hid_t loc, const char *name, hid_t type,
         attr = H5Acreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
         ok = attr >= 0 && H5Awrite(attr, type, value) >= 0;
     }
+    int error_number = ok ? 0 : h5_failure_errno();
     if (attr >= 0)
         H5Aclose(attr);
     if (space >= 0)
         H5Sclose(space);
-    GSN_CHECK(ok, GSN_ERR_IO, "%s: cannot write attribute '%s'",
-              h5_file_name(loc, file, sizeof file), name);
+    if (!ok) {
+        char what[128];
+        snprintf(what, sizeof what, "cannot write attribute '%s'", name);
+        return GSN_WRITE_ERROR(h5_file_name(loc, file, sizeof file),
+                               error_number, what);
+    }
     return GSN_OK;
 }
 
@@ -227,8 +254,10 @@ int gsn_h5_create(const char *path, const char *kind, const char *case_yaml,
 {
     h5_quiet();
     *file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    GSN_CHECK(*file >= 0, GSN_ERR_IO,
-              "%s: cannot create the file (is the folder writable?)", path);
+    if (*file < 0)
+        return GSN_WRITE_ERROR(path, h5_failure_errno(),
+                               "cannot create the file (is the folder "
+                               "writable?)");
     int rc = GSN_OK;
     GSN_CALL_GOTO(gsn_h5_attr_write_int(*file, GSN_ATTR_SCHEMA_VERSION,
                                         GSN_SCHEMA_VERSION),
@@ -291,6 +320,8 @@ int gsn_h5_close(hid_t *handle)
     if (*handle < 0)
         return GSN_OK;
     H5I_type_t type = H5Iget_type(*handle);
+    char file[256];
+    h5_file_name(*handle, file, sizeof file);
     herr_t status = -1;
     if (type == H5I_FILE)
         status = H5Fclose(*handle);
@@ -298,9 +329,21 @@ int gsn_h5_close(hid_t *handle)
         status = H5Gclose(*handle);
     else if (type == H5I_DATASET)
         status = H5Dclose(*handle);
+    int error_number = status >= 0 ? 0 : h5_failure_errno();
     *handle = H5I_INVALID_HID;
-    GSN_CHECK(status >= 0, GSN_ERR_IO, "closing an HDF5 handle failed");
+    if (status < 0) /* closing a file writes what HDF5 still holds */
+        return GSN_WRITE_ERROR(file, error_number, "cannot close the file");
     return GSN_OK;
+}
+
+int gsn_h5_flush(hid_t file)
+{
+    char name[256];
+    if (H5Fflush(file, H5F_SCOPE_GLOBAL) >= 0)
+        return GSN_OK;
+    int error_number = h5_failure_errno();
+    return GSN_WRITE_ERROR(h5_file_name(file, name, sizeof name), error_number,
+                           "cannot write to the file");
 }
 
 /* Opens a dataset and checks its type class, rank and columns. */
@@ -398,16 +441,23 @@ static int h5_overwrite(hid_t loc, const struct gsn_dataset_info *info,
     hid_t dataset = H5I_INVALID_HID, owned = H5I_INVALID_HID;
     GSN_CALL(h5_dataset_open(loc, info, &dataset, &stored_rows));
     hid_t type = h5_memory_type(info->type, &owned);
-    int ok = stored_rows == rows && type >= 0 &&
-             (rows == 0 || H5Dwrite(dataset, type, H5S_ALL, H5S_ALL,
-                                    H5P_DEFAULT, data) >= 0);
-    if (owned >= 0)
-        H5Tclose(owned);
-    H5Dclose(dataset);
-    GSN_CHECK(ok, GSN_ERR_IO,
+    GSN_CHECK(stored_rows == rows && type >= 0, GSN_ERR_IO,
               "%s: cannot overwrite dataset '%s' (%zu rows, %zu stored)",
               h5_file_name(loc, file, sizeof file), info->path, rows,
               stored_rows);
+    int ok = rows == 0 ||
+             H5Dwrite(dataset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0;
+    int error_number = ok ? 0 : h5_failure_errno();
+    if (owned >= 0)
+        H5Tclose(owned);
+    H5Dclose(dataset);
+    if (!ok) {
+        char what[600];
+        snprintf(what, sizeof what, "cannot overwrite dataset '%s'",
+                 info->path);
+        return GSN_WRITE_ERROR(h5_file_name(loc, file, sizeof file),
+                               error_number, what);
+    }
     return GSN_OK;
 }
 
@@ -435,6 +485,7 @@ int gsn_h5_write(hid_t loc, const struct gsn_dataset_info *info, size_t rows,
     }
     if (ok && rows > 0)
         ok = H5Dwrite(dataset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0;
+    int error_number = ok ? 0 : h5_failure_errno();
     if (space >= 0)
         H5Sclose(space);
     if (owned >= 0)
@@ -448,8 +499,11 @@ int gsn_h5_write(hid_t loc, const struct gsn_dataset_info *info, size_t rows,
     }
     if (dataset >= 0)
         H5Dclose(dataset);
-    GSN_CHECK(ok, GSN_ERR_IO, "%s: cannot write dataset '%s'", file,
-              info->path);
+    if (!ok) {
+        char what[600];
+        snprintf(what, sizeof what, "cannot write dataset '%s'", info->path);
+        return GSN_WRITE_ERROR(file, error_number, what);
+    }
     GSN_CALL(rc);
     return GSN_OK;
 }

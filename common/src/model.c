@@ -172,6 +172,15 @@ int gsn_model_write(const char *path, const struct gsn_model *m,
         GSN_CALL_GOTO(
             gsn_h5_attr_write_string(file, GSN_ATTR_PRE_SIGNATURE, signature),
             rc, done);
+        /* the geometry's contents, for run's up-to-date test (a model
+         * made without a geometry file, by a test, has none) */
+        char hash[GSN_FILE_HASH_SIZE];
+        if (gsn_file_hash(c->geometry, hash) == GSN_OK)
+            GSN_CALL_GOTO(
+                gsn_h5_attr_write_string(file, GSN_ATTR_GEOMETRY_HASH, hash),
+                rc, done);
+        else
+            gsn_error_clear();
     }
     void *data[GSN_MODEL_DATASET_COUNT];
     size_t rows[GSN_MODEL_DATASET_COUNT];

@@ -69,8 +69,7 @@ int gsn_results_frame_write(hid_t file, int index,
     GSN_CALL_GOTO(
         gsn_h5_attr_write_int(file, GSN_RESULTS_ATTR_FRAME_COUNT, index + 1),
         rc, done);
-    GSN_CHECK_GOTO(H5Fflush(file, H5F_SCOPE_GLOBAL) >= 0, rc, GSN_ERR_IO, done,
-                   "cannot flush the results file after frame %d", index);
+    GSN_CALL_GOTO(gsn_h5_flush(file), rc, done);
 done:
     gsn_h5_close(&group);
     return rc;

@@ -125,10 +125,26 @@ void gsn_history_free(struct gsn_history *history)
     memset(history, 0, sizeof *history);
 }
 
+/* 1 if column is name itself or name with its unit after it (time_s,
+ * footing_fz_N: solve's header since 2026-12-02; before, bare names). */
+static int column_is(const char *column, const char *name)
+{
+    static const char *const units[] = {"_s", "_m", "_N", "_J"};
+    size_t n = strlen(name);
+    if (strncmp(column, name, n) != 0)
+        return 0;
+    if (column[n] == '\0')
+        return 1;
+    for (size_t k = 0; k < sizeof units / sizeof units[0]; ++k)
+        if (strcmp(column + n, units[k]) == 0)
+            return 1;
+    return 0;
+}
+
 int gsn_history_column(const struct gsn_history *history, const char *name)
 {
     for (int k = 0; k < history->column_count; ++k)
-        if (strcmp(history->names[k], name) == 0)
+        if (column_is(history->names[k], name))
             return k;
     return -1;
 }
@@ -138,4 +154,32 @@ void gsn_history_copy_column(const struct gsn_history *history, int column,
 {
     for (int r = 0; r < history->row_count; ++r)
         out[r] = history->values[(size_t)r * history->column_count + column];
+}
+
+int gsn_history_motion_curve(const struct gsn_history *history,
+                             const char *name, const double direction[3],
+                             double factor, double *x, double *y)
+{
+    static const char *const suffix[6] = {"ux", "uy", "uz", "fx", "fy", "fz"};
+    int column[6];
+    for (int k = 0; k < 6; ++k) {
+        char wanted[GSN_HISTORY_NAME_SIZE + 8];
+        snprintf(wanted, sizeof wanted, "%s_%s", name, suffix[k]);
+        column[k] = gsn_history_column(history, wanted);
+        GSN_CHECK(column[k] >= 0, GSN_ERR_INPUT,
+                  "history.csv lacks the column %s of the boundary entry "
+                  "'%s'",
+                  wanted, name);
+    }
+    for (int r = 0; r < history->row_count; ++r) {
+        const double *row = history->values + (size_t)r * history->column_count;
+        double u = 0.0, f = 0.0;
+        for (int j = 0; j < 3; ++j) {
+            u += row[column[j]] * direction[j];
+            f += row[column[3 + j]] * direction[j];
+        }
+        x[r] = u;
+        y[r] = 1e-3 * factor * f; /* N -> kN */
+    }
+    return GSN_OK;
 }

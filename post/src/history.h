@@ -20,8 +20,19 @@ int gsn_history_read(const char *path, struct gsn_history *history);
 /* Frees the arrays and zeroes the struct; accepts a zeroed struct. */
 void gsn_history_free(struct gsn_history *history);
 
-/* Index of a column by name, or -1. */
+/* Index of a column by name, or -1: "time" finds "time_s", "a_fz" finds
+ * "a_fz_N" (units after the names), and the bare names of older files. */
 int gsn_history_column(const struct gsn_history *history, const char *name);
+
+/* The load-settlement curve of boundary entry `name` moved along
+ * direction (a unit vector): for every row, x the mean displacement of its
+ * particles along it (m) and y factor times the force on the body through
+ * it along it (kN), both signed: a force against the motion (the surface
+ * holding the body back) is negative. GSN_ERR_INPUT when a column of the
+ * entry is missing. */
+int gsn_history_motion_curve(const struct gsn_history *history,
+                             const char *name, const double direction[3],
+                             double factor, double *x, double *y);
 
 /* Copies column into out (row_count values). */
 void gsn_history_copy_column(const struct gsn_history *history, int column,

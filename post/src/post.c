@@ -445,17 +445,32 @@ static int post_frame_pictures(const struct gsn_vtk_grid *grid,
 }
 
 /* The .pvd collection: each frame's file and time. */
-static int post_pvd_write(const char *path, hid_t results, int count)
+/* The .pvd's second line: what post made it from (post_stamp), so that run
+ * can tell whether post is up to date by the contents of results.h5. */
+#define PVD_STAMP_START "<!-- geoscni post: "
+#define PVD_STAMP_END " -->"
+
+static void post_stamp(const char *results_hash, int pictures, char *out,
+                       size_t size)
+{
+    snprintf(out, size, "made from results.h5 %s, pictures %s", results_hash,
+             pictures ? "yes" : "no");
+}
+
+static int post_pvd_write(const char *path, hid_t results, int count,
+                          const char *stamp)
 {
     char temporary[GSN_PATH_SIZE];
     GSN_CALL(gsn_path_temporary(temporary, sizeof temporary, path));
     FILE *file = fopen(temporary, "w");
-    GSN_CHECK(file != NULL, GSN_ERR_IO, "cannot write %s: %s", temporary,
-              strerror(errno));
+    if (!file)
+        return GSN_WRITE_ERROR(temporary, errno, "cannot create");
     int rc = GSN_OK;
-    fprintf(file, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
-                  "version=\"0.1\" byte_order=\"LittleEndian\">\n"
-                  "  <Collection>\n");
+    fprintf(file,
+            "<?xml version=\"1.0\"?>\n" PVD_STAMP_START "%s" PVD_STAMP_END
+            "\n<VTKFile type=\"Collection\" version=\"0.1\" "
+            "byte_order=\"LittleEndian\">\n  <Collection>\n",
+            stamp);
     for (int k = 0; k < count; ++k) {
         char group_name[64];
         snprintf(group_name, sizeof group_name, GSN_FRAME_GROUP_FORMAT, k);
@@ -474,9 +489,10 @@ static int post_pvd_write(const char *path, hid_t results, int count)
     }
     fprintf(file, "  </Collection>\n</VTKFile>\n");
 done:
+    if ((fflush(file) != 0 || ferror(file)) && rc == GSN_OK)
+        rc = GSN_WRITE_ERROR(temporary, errno, "cannot write");
     if (fclose(file) != 0 && rc == GSN_OK)
-        rc = gsn_error_raise(GSN_ERR_IO, __FILE__, __LINE__, __func__,
-                             "cannot write %s: %s", temporary, strerror(errno));
+        rc = GSN_WRITE_ERROR(temporary, errno, "cannot write");
     if (rc == GSN_OK)
         rc = gsn_file_commit(path);
     if (rc != GSN_OK) {
@@ -507,9 +523,11 @@ static int post_chart_write(const char *path, const char *title,
     return GSN_OK;
 }
 
-/* The load-settlement curve of a moving boundary entry: the reaction force
- * along its prescribed velocity against the mean displacement of its
- * particles along it, both as magnitudes (a footing pushed down plots up). */
+/* The load-settlement curve of a moving boundary entry: the force on the
+ * body through it along its prescribed velocity against the mean
+ * displacement of its particles along it, both signed (a footing pushed
+ * down plots up; where it holds the body back, as under gravity, the force
+ * is negative and drawn so). */
 static int post_load_settlement(const struct gsn_history *history,
                                 const struct gsn_boundary *b, double factor,
                                 const char *case_name, const char *path,
@@ -523,39 +541,23 @@ static int post_load_settlement(const struct gsn_history *history,
         }
     if (!(norm > 0.0))
         return GSN_OK; /* does not move */
-    norm = sqrt(norm);
-    static const char *const suffix[6] = {"ux", "uy", "uz", "fx", "fy", "fz"};
-    int column[6];
-    for (int k = 0; k < 6; ++k) {
-        char name[GSN_HISTORY_NAME_SIZE];
-        snprintf(name, sizeof name, "%s_%s", b->name, suffix[k]);
-        column[k] = gsn_history_column(history, name);
-        GSN_CHECK(column[k] >= 0, GSN_ERR_INPUT,
-                  "history.csv lacks the column %s of the boundary entry "
-                  "'%s'",
-                  name, b->name);
-    }
-    for (int r = 0; r < history->row_count; ++r) {
-        const double *row = history->values + (size_t)r * history->column_count;
-        double u = 0.0, f = 0.0;
-        for (int j = 0; j < 3; ++j) {
-            u += row[column[j]] * direction[j] / norm;
-            f += row[column[3 + j]] * direction[j] / norm;
-        }
-        x[r] = fabs(u);
-        y[r] = 1e-3 * factor * fabs(f); /* N -> kN */
-    }
-    char title[TITLE_SIZE], x_label[TITLE_SIZE];
+    for (int j = 0; j < 3; ++j)
+        direction[j] /= sqrt(norm);
+    GSN_CALL(
+        gsn_history_motion_curve(history, b->name, direction, factor, x, y));
+    char title[TITLE_SIZE], x_label[TITLE_SIZE], y_label[TITLE_SIZE];
     snprintf(title, sizeof title, "%s: load-settlement of '%s'%s", case_name,
              b->name,
              factor == 2.0 ? " (whole body: twice the half model's force)"
                            : "");
     snprintf(x_label, sizeof x_label,
              "mean displacement of '%s' along its motion [m]", b->name);
+    snprintf(y_label, sizeof y_label,
+             "force on the body along the motion, signed [kN]");
     const char *names[1] = {b->name};
     const double *xs[1] = {x}, *ys[1] = {y};
-    GSN_CALL(post_chart_write(path, title, x_label, "reaction force [kN]", 1,
-                              names, &history->row_count, xs, ys));
+    GSN_CALL(post_chart_write(path, title, x_label, y_label, 1, names,
+                              &history->row_count, xs, ys));
     ++*written;
     return GSN_OK;
 }
@@ -727,6 +729,82 @@ static int post_remove_old_pictures(const char *folder, int plots)
     return rc;
 }
 
+/* A results.h5.part beside (or instead of) results.h5 is the newest run,
+ * stopped while it wrote it (killed: the lock of the folder says no solve
+ * runs now): post refuses it and says how to finish it. */
+static int post_refuse_partial(const char *outdir, const char *results_path)
+{
+    char part[GSN_PATH_SIZE], where[128] = "";
+    GSN_CALL(gsn_path_temporary(part, sizeof part, results_path));
+    if (access(part, F_OK) != 0)
+        return GSN_OK;
+    hid_t file = H5I_INVALID_HID, group = H5I_INVALID_HID;
+    int step = 0;
+    double time = 0.0;
+    if (gsn_h5_open(part, GSN_FILE_KIND_RESULTS, 0, &file) == GSN_OK &&
+        gsn_h5_exists(file, GSN_CHECKPOINT_GROUP) &&
+        (group = H5Gopen2(file, GSN_CHECKPOINT_GROUP, H5P_DEFAULT)) >= 0 &&
+        gsn_h5_attr_read_int(group, GSN_FRAME_ATTR_STEP, &step) == GSN_OK &&
+        gsn_h5_attr_read_double(group, GSN_FRAME_ATTR_TIME, &time) == GSN_OK)
+        snprintf(where, sizeof where,
+                 " (its last checkpoint: step %d, t = %g s)", step, time);
+    if (group >= 0)
+        H5Gclose(group);
+    gsn_h5_close(&file);
+    gsn_error_clear();
+    GSN_CHECK(0, GSN_ERR_INPUT,
+              "%s: the results are incomplete: the solve that wrote them "
+              "stopped before its end without finishing the file (killed)%s%s; "
+              "continue it with 'geoscni run CASE.yaml -o %s --restart', or "
+              "start over with 'geoscni run CASE.yaml -o %s --rerun'",
+              part, where,
+              access(results_path, F_OK) == 0
+                  ? ", and results.h5 beside it is an older run's"
+                  : "",
+              outdir, outdir);
+    return GSN_OK;
+}
+
+/* A warning when results.h5 holds a run that did not reach its end
+ * (interrupted, or stopped by a numerical failure): post writes its frames,
+ * and says so. */
+static void post_note_incomplete(hid_t results, const char *path,
+                                 const struct gsn_case *c, int have_case,
+                                 int count)
+{
+    int complete = 1, interrupted = 0;
+    if (gsn_h5_attr_read_int(results, GSN_RESULTS_ATTR_COMPLETE, &complete) !=
+            GSN_OK ||
+        complete) {
+        gsn_error_clear();
+        return;
+    }
+    if (H5Aexists(results, GSN_RESULTS_ATTR_INTERRUPTED) > 0 &&
+        gsn_h5_attr_read_int(results, GSN_RESULTS_ATTR_INTERRUPTED,
+                             &interrupted) != GSN_OK)
+        interrupted = 0;
+    double last = 0.0;
+    char group_name[64], end[64] = "";
+    snprintf(group_name, sizeof group_name, GSN_FRAME_GROUP_FORMAT, count - 1);
+    hid_t group = H5Gopen2(results, group_name, H5P_DEFAULT);
+    if (group < 0 ||
+        gsn_h5_attr_read_double(group, GSN_FRAME_ATTR_TIME, &last) != GSN_OK)
+        last = NAN;
+    if (group >= 0)
+        H5Gclose(group);
+    gsn_error_clear();
+    if (have_case)
+        snprintf(end, sizeof end, " of its %g s", c->time_end);
+    fprintf(stderr,
+            "geoscni post: warning: %s is incomplete: its run %s before its "
+            "end%s; post writes the %d frames it has, to t = %g s%s\n",
+            path,
+            interrupted ? "was interrupted" : "stopped (a numerical failure)",
+            end, count, last,
+            interrupted ? " (continue the run with --restart, then post again)"
+                        : "");
+}
+
 struct post_state {
     hid_t results;
     struct post_mesh mesh;
@@ -741,8 +819,9 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
                     struct post_state *s)
 {
     char path[GSN_PATH_SIZE], folder[GSN_PATH_SIZE];
-    char case_name[CASE_NAME_SIZE];
+    char results_path[GSN_PATH_SIZE], case_name[CASE_NAME_SIZE];
     GSN_CALL(gsn_path_join(path, sizeof path, outdir, "results.h5"));
+    GSN_CALL(post_refuse_partial(outdir, path));
     GSN_CHECK(access(path, F_OK) == 0, GSN_ERR_INPUT,
               "%s not found: post needs the results of 'geoscni solve' in "
               "%s",
@@ -772,6 +851,9 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
               outdir, rows, s->mesh.point_count);
     GSN_CALL(post_case_name(s->results, outdir, case_name, sizeof case_name));
     int have_case = post_case_load(s->results, s->c);
+    GSN_CALL(
+        gsn_path_join(results_path, sizeof results_path, outdir, "results.h5"));
+    post_note_incomplete(s->results, results_path, s->c, have_case, count);
     if (have_case && s->c->output_mirror[0]) {
         GSN_CALL(post_mirror_create(path, s->c->output_mirror, &s->mesh,
                                     &s->mirror));
@@ -829,21 +911,65 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
         gsn_vtk_grid_destroy(&s->grid);
     }
     post_remove_stale_frames(outdir, count);
-    char pvd[CASE_NAME_SIZE + 8];
+    if (pictures)
+        GSN_CALL(post_plots(outdir, s->c, have_case, case_name, &plot_count));
+    /* the .pvd last: its stamp says post is done (gsn_post_up_to_date) */
+    char pvd[CASE_NAME_SIZE + 8], stamp[GSN_FILE_HASH_SIZE + 64];
     snprintf(pvd, sizeof pvd, "%s.pvd", case_name);
     GSN_CALL(gsn_path_join(path, sizeof path, outdir, pvd));
-    GSN_CALL(post_pvd_write(path, s->results, count));
+    char hash[GSN_FILE_HASH_SIZE];
+    GSN_CALL(gsn_file_hash(results_path, hash));
+    post_stamp(hash, pictures, stamp, sizeof stamp);
+    GSN_CALL(post_pvd_write(path, s->results, count, stamp));
     if (!o->quiet)
         printf("post: %s with %d frames (vtu/frame_0000.vtu to "
                "frame_%04d.vtu)\n",
                path, count, count - 1);
-    if (pictures) {
-        GSN_CALL(post_plots(outdir, s->c, have_case, case_name, &plot_count));
-        if (!o->quiet)
-            printf("post: %d pictures in %s, %d plots in %s/plots\n",
-                   picture_count, picture_folder, plot_count, outdir);
-    }
+    if (pictures && !o->quiet)
+        printf("post: %d pictures in %s, %d plots in %s/plots\n", picture_count,
+               picture_folder, plot_count, outdir);
     return GSN_OK;
+}
+
+int gsn_post_up_to_date(const char *outdir,
+                        const struct gsn_post_options *options)
+{
+    char path[GSN_PATH_SIZE], case_name[CASE_NAME_SIZE];
+    char pvd[GSN_PATH_SIZE + CASE_NAME_SIZE], line[512], stamp[512];
+    char hash[GSN_FILE_HASH_SIZE];
+    hid_t results = H5I_INVALID_HID;
+    int current = 0;
+    if (gsn_path_join(path, sizeof path, outdir, "results.h5") != GSN_OK ||
+        gsn_h5_open(path, GSN_FILE_KIND_RESULTS, 0, &results) != GSN_OK ||
+        post_case_name(results, outdir, case_name, sizeof case_name) !=
+            GSN_OK ||
+        snprintf(pvd, sizeof pvd, "%s/%s.pvd", outdir, case_name) >=
+            (int)sizeof pvd ||
+        gsn_file_hash(path, hash) != GSN_OK)
+        goto done;
+    /* made with pictures serves a run without them too */
+    for (int pictures = 1; pictures >= (options->no_pictures ? 0 : 1);
+         --pictures) {
+        FILE *file = fopen(pvd, "r");
+        if (!file)
+            goto done;
+        post_stamp(hash, pictures, stamp, sizeof stamp);
+        int lines = 0;
+        while (!current && lines++ < 3 && fgets(line, sizeof line, file))
+            current =
+                strncmp(line, PVD_STAMP_START, strlen(PVD_STAMP_START)) == 0 &&
+                strncmp(line + strlen(PVD_STAMP_START), stamp, strlen(stamp)) ==
+                    0 &&
+                strncmp(line + strlen(PVD_STAMP_START) + strlen(stamp),
+                        PVD_STAMP_END, strlen(PVD_STAMP_END)) == 0;
+        fclose(file);
+        if (current)
+            break;
+    }
+done:
+    gsn_h5_close(&results);
+    gsn_error_clear();
+    return current;
 }
 
 int gsn_post_run(const char *outdir, const struct gsn_post_options *options)

@@ -5,6 +5,7 @@
 #include "vtk_output.h"
 
 #include "geoscni/error.h"
+#include "geoscni/files.h"
 #include "geoscni/post.h"
 
 #include <X11/Xlib.h>
@@ -19,6 +20,7 @@
 #include <vtkContextView.h>
 #include <vtkDataSetSurfaceFilter.h>
 #include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
 #include <vtkFeatureEdges.h>
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
@@ -50,6 +52,7 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <exception>
 #include <string>
@@ -73,6 +76,29 @@ int raise_exception(const char *where, const char *what)
                            "VTK failed: %s", what);
 }
 
+// A VTK writer that failed: "no space left on device" when VTK says so or
+// the disk is full (files.h), else its error code.
+int vtk_write_error(const char *path, unsigned long code)
+{
+    char what[96];
+    snprintf(what, sizeof what, "cannot write it (VTK error code %lu)", code);
+    return gsn_write_error_raise(
+        __FILE__, __LINE__, __func__, path,
+        code == vtkErrorCode::OutOfDiskSpaceError ? ENOSPC : 0, what);
+}
+
+// Runs write() (a writer's Write, true if it wrote) with VTK's own error
+// log off: a failed write is reported by the caller, once, with the file
+// and its cause.
+template <class Write> bool quietly(Write write)
+{
+    int shown = vtkObject::GetGlobalWarningDisplay();
+    vtkObject::GlobalWarningDisplayOff();
+    bool written = write();
+    vtkObject::SetGlobalWarningDisplay(shown);
+    return written;
+}
+
 // Writes what a render window shows to a PNG.
 int window_write_png(vtkRenderWindow *window, const char *path)
 {
@@ -84,10 +110,11 @@ int window_write_png(vtkRenderWindow *window, const char *path)
     vtkNew<vtkPNGWriter> writer;
     writer->SetFileName(path);
     writer->SetInputConnection(capture->GetOutputPort());
-    writer->Write();
-    GSN_CHECK(writer->GetErrorCode() == 0, GSN_ERR_IO,
-              "cannot write the picture %s (VTK error code %lu)", path,
-              writer->GetErrorCode());
+    if (!quietly([&] {
+            writer->Write();
+            return writer->GetErrorCode() == 0;
+        }))
+        return vtk_write_error(path, writer->GetErrorCode());
     return GSN_OK;
 }
 
@@ -541,9 +568,10 @@ extern "C" int gsn_vtk_grid_write(const struct gsn_vtk_grid *grid,
         writer->EncodeAppendedDataOff();
         writer->SetCompressorTypeToZLib();
         writer->SetHeaderTypeToUInt64();
-        GSN_CHECK(writer->Write() == 1 && writer->GetErrorCode() == 0,
-                  GSN_ERR_IO, "cannot write %s (VTK error code %lu)", path,
-                  writer->GetErrorCode());
+        if (!quietly([&] {
+                return writer->Write() == 1 && writer->GetErrorCode() == 0;
+            }))
+            return vtk_write_error(path, writer->GetErrorCode());
     } catch (const std::exception &e) {
         return raise_exception(__func__, e.what());
     } catch (...) {

@@ -73,6 +73,7 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
                         e->velocity,
                         e->acceleration,
                         e->f_ext,
+                        e->f_ext_full,
                         e->f_int,
                         e->reaction,
                         e->boundary_force,
@@ -271,10 +272,21 @@ static int build_mass(struct gsn_explicit *e)
                   "large for the particle spacing",
                   i, q->rk->position[3 * i], q->rk->position[3 * i + 1],
                   q->rk->position[3 * i + 2], e->mass[i]);
-        for (int k = 0; k < 3; ++k)
-            e->f_ext[3 * i + k] = e->mass[i] * e->gravity[k];
+        for (int k = 0; k < 3; ++k) {
+            e->f_ext_full[3 * i + k] = e->mass[i] * e->gravity[k];
+            e->f_ext[3 * i + k] = e->load_factor * e->f_ext_full[3 * i + k];
+        }
     }
     return GSN_OK;
+}
+
+void gsn_explicit_set_load_factor(struct gsn_explicit *e, double factor)
+{
+    if (factor == e->load_factor)
+        return;
+    for (size_t i = 0; i < 3 * (size_t)e->particle_count; ++i)
+        e->f_ext[i] = factor * e->f_ext_full[i];
+    e->load_factor = factor;
 }
 
 /* The nodal domain of every particle (explicit.h, domain_point): a nodal
@@ -386,13 +398,13 @@ int gsn_explicit_create(const struct gsn_model *m,
     e->state_size = material->ops->state_size;
     e->plastic_offset =
         gsn_material_state_offset(material->ops, "equivalent_plastic_strain");
-    e->damage_offset = gsn_material_state_offset(material->ops, "damage");
     e->bulk_modulus = c->material.bulk_modulus;
     e->shear_modulus = c->material.shear_modulus;
     e->dt = dt;
     e->damping_local = c->damping_local;
     e->small_strain = c->small_strain;
     memcpy(e->gravity, c->gravity, sizeof e->gravity);
+    e->load_factor = 1.0;
     e->thread_count = omp_get_max_threads();
     size_t n3 = 3 * (size_t)e->particle_count;
     size_t points = (size_t)e->point_count;
@@ -406,6 +418,7 @@ int gsn_explicit_create(const struct gsn_model *m,
         {(void **)&e->velocity, n3, sizeof(double)},
         {(void **)&e->acceleration, n3, sizeof(double)},
         {(void **)&e->f_ext, n3, sizeof(double)},
+        {(void **)&e->f_ext_full, n3, sizeof(double)},
         {(void **)&e->f_int, n3, sizeof(double)},
         {(void **)&e->reaction, n3, sizeof(double)},
         {(void **)&e->boundary_force, n3, sizeof(double)},
@@ -497,12 +510,14 @@ void gsn_explicit_add_traction(struct gsn_explicit *e,
         double w = q->boundary_point_weight[b];
         for (int k = values->offset[b]; k < values->offset[b + 1]; ++k)
             for (int c = 0; c < 3; ++c)
-                e->f_ext[3 * values->index[k] + c] +=
+                e->f_ext_full[3 * values->index[k] + c] +=
                     values->value[k] * traction[c] * w;
     }
-    for (int i = 0; i < 3 * e->particle_count; ++i)
+    for (int i = 0; i < 3 * e->particle_count; ++i) {
+        e->f_ext[i] = e->load_factor * e->f_ext_full[i];
         e->previous_external[i] =
             e->f_ext[i] + e->reaction[i] + e->boundary_force[i];
+    }
 }
 
 /* Small-strain elastic stress of the strain eps (Voigt, tensor shear). */
@@ -726,14 +741,8 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
             memset(&G[9 * b], 0, 9 * sizeof(double));
             Jmid[b] = 1.0;
         } else {
-            /* the strain as the stress sees it: a damaged point's
-             * distortion matters in proportion to its stiffness */
-            double stiffness = e->damage_offset < 0
-                                   ? 1.0
-                                   : 1.0 - e->state[(size_t)e->state_size * p +
-                                                    e->damage_offset];
-            double strain = stiffness * green_strain_norm(F1);
-            double volume = exp(stiffness * log(J1));
+            double strain = green_strain_norm(F1);
+            double volume = J1;
             if (strain > strain_max) {
                 strain_max = strain;
                 strain_point = p;
@@ -1532,6 +1541,7 @@ int gsn_explicit_carry_over(struct gsn_explicit *to,
                                            &to->interpolation_iterations),
                   rc, done);
     memset(to->displacement, 0, sizeof(double) * 3 * (size_t)n);
+    to->load_factor = from->load_factor;
     GSN_CALL_GOTO(gsn_explicit_set_point_mass(to, from->point_mass), rc, done);
     memcpy(to->stress, from->stress,
            sizeof(double) * 6 * (size_t)from->point_count);

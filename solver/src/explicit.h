@@ -84,7 +84,11 @@ struct gsn_explicit {
     double *displacement;   /* n x 3 coefficients d_I, m */
     double *velocity;       /* n x 3, m/s */
     double *acceleration;   /* n x 3, m/s^2 */
-    double *f_ext;          /* n x 3 body force, N */
+    double *f_ext;          /* n x 3 external force of the step, N: the
+                               dead loads times load_factor */
+    double *f_ext_full;     /* n x 3 dead loads (body force, tractions) at
+                               full value, N */
+    double load_factor;     /* of the dead loads (time.ramp), 1 at full */
     double *f_int;          /* n x 3 internal force, N */
     double *reaction;       /* n x 3: M a - f_ext + f_int where constrained */
     double *boundary_force; /* n x 3: the boundary term, taken off f_int */
@@ -159,13 +163,9 @@ struct gsn_explicit {
                                    stopping the run */
     int *point_dead;            /* main points: 1 once failed */
     int dead_count;             /* main points failed so far */
-    int damage_offset;          /* damage in the state, -1 without damage */
     /* Distortion of the step just done over the live main points, from
-     * F_inc = I + H, each point's weighted by its stiffness 1 - damage (a
-     * damaged point's distortion matters to the stress in proportion to
-     * it): the largest (1 - damage) |E|, E = (F^T F - I) / 2 (Frobenius),
-     * the extremes of (det F_inc)^(1 - damage), and where the largest
-     * strain is. */
+     * F_inc = I + H: the largest |E|, E = (F^T F - I) / 2 (Frobenius), the
+     * extremes of det F_inc, and where the largest strain is. */
     double distortion_strain, distortion_jacobian_min, distortion_jacobian_max;
     int distortion_point;
     double *block_distortion;     /* blocks x 4: the same per block */
@@ -195,6 +195,9 @@ void gsn_explicit_destroy(struct gsn_explicit **e);
  * (the points are the particles' own). */
 int gsn_explicit_carry_over(struct gsn_explicit *to,
                             const struct gsn_explicit *from);
+
+/* f_ext = factor x the dead loads (the ramp of gravity and tractions). */
+void gsn_explicit_set_load_factor(struct gsn_explicit *e, double factor);
 
 /* Sets the masses the main points carry (kg, one per main point) and
  * builds the lumped masses and the body force from them. */

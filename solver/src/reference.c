@@ -125,7 +125,7 @@ enum gsn_reference_reason gsn_reference_due(const struct gsn_reference *r)
 {
     const struct gsn_case *c = r->c;
     const struct gsn_explicit *e = r->loop;
-    if (!c->reference_update)
+    if (!c->reference_update || e->step - r->step < c->reference_min_steps)
         return GSN_REFERENCE_NOT_DUE;
     if (e->distortion_strain > c->reference_strain)
         return GSN_REFERENCE_STRAIN;

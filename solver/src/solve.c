@@ -18,6 +18,7 @@
 #include "material.h"
 #include "reference.h"
 
+#include <errno.h>
 #include <math.h>
 #include <omp.h>
 #include <signal.h>
@@ -43,8 +44,15 @@
 #define QUASI_STATIC_FIRST 0.05
 /* Frames that add up to more than this many bytes are worth a warning. */
 #define LARGE_OUTPUT_BYTES 2e9
+/* A sudden load is warned of with a suggested time.ramp of this many
+ * periods of the body's lowest mode (docs/solver.md, "Quasi-static
+ * loads"). */
+#define SUDDEN_LOAD_PERIODS 2.0
 /* Wall-clock seconds between checkpoints. */
 #define CHECKPOINT_INTERVAL 30.0
+/* Wall-clock seconds between progress lines written to a file or pipe
+ * (besides one at every tenth of the run), unless the options give it. */
+#define PROGRESS_INTERVAL 10.0
 
 struct boundary_set {
     int surface; /* index in the model */
@@ -81,6 +89,9 @@ struct run {
     double kinetic_ratio_time; /* s, when it occurred */
     double last_checkpoint;    /* wall-clock time of the last one, s */
     int body_written; /* the remesh count of the body in the checkpoint */
+    /* the full resultant of each traction entry on the present reference
+     * configuration, N (the loop applies it times its load factor) */
+    double traction_force[GSN_MAX_BOUNDARIES][3];
 };
 
 static double now_seconds(void)
@@ -156,27 +167,75 @@ static void fill_frame(struct run *r, unsigned wanted)
                sizeof(double) * (size_t)n);
 }
 
+/* Flushes history.csv and reports a failed write (a full disk by name). */
+static int history_flush(const struct run *r)
+{
+    if (fflush(r->history) != 0 || ferror(r->history))
+        return GSN_WRITE_ERROR(r->history_path, errno, "cannot write");
+    return GSN_OK;
+}
+
+/* The header: each column's unit after its name (time_s, NAME_fz_N), so
+ * the file stays a plain CSV that carries its units. */
 static int write_history_header(struct run *r)
 {
-    fprintf(r->history, "time,step");
+    fprintf(r->history, "time_s,step");
     for (int b = 0; b < r->c->boundary_count; ++b) {
         const char *name = r->c->boundaries[b].name;
-        fprintf(r->history, ",%s_ux,%s_uy,%s_uz,%s_fx,%s_fy,%s_fz", name, name,
-                name, name, name, name);
+        fprintf(r->history, ",%s_ux_m,%s_uy_m,%s_uz_m,%s_fx_N,%s_fy_N,%s_fz_N",
+                name, name, name, name, name, name);
     }
     fprintf(r->history,
-            ",kinetic_energy,internal_energy,external_work,max_damage,"
-            "damping_work,reference_updates,update_energy,failed_particles\n");
-    GSN_CHECK(!ferror(r->history), GSN_ERR_IO, "%s: cannot write",
-              r->history_path);
+            ",kinetic_energy_J,internal_energy_J,external_work_J,max_damage,"
+            "damping_work_J,reference_updates,update_energy_J,"
+            "failed_particles\n");
+    GSN_CALL(history_flush(r));
     return GSN_OK;
+}
+
+/* The full resultant of every traction entry on the present reference
+ * configuration (t A: the shape functions add up to 1 at every facet
+ * point), for its history columns. */
+static void traction_resultants(struct run *r)
+{
+    const struct gsn_case *c = r->c;
+    const struct gsn_quadrature *q = r->reference->quadrature;
+    const struct gsn_model *m = r->reference->model;
+    for (int b = 0; b < c->boundary_count; ++b) {
+        const struct gsn_boundary *entry = &c->boundaries[b];
+        if (!entry->has_traction[0])
+            continue;
+        int surface = gsn_model_find_surface(m, entry->name);
+        double area = 0.0;
+        for (int p = 0; p < q->boundary_point_count; ++p)
+            if (m->facet_surface[q->boundary_point_facet[p]] == surface)
+                area += q->boundary_point_weight[p];
+        for (int k = 0; k < 3; ++k)
+            r->traction_force[b][k] = entry->traction[k] * area;
+    }
+}
+
+/* The factor of the dead loads at time t: with time.ramp they rise as the
+ * prescribed velocities do, (1 - cos(pi t / T)) / 2, else 1 (constraint.h,
+ * gsn_ramp_factor). */
+static double load_factor(const struct run *r, double t)
+{
+    return gsn_ramp_factor(r->c->time_ramp, GSN_FIELD_VELOCITY, t);
+}
+
+/* Sets the loop's f_ext to the dead loads at time t (a no-op once they are
+ * at full value). */
+static void apply_loads(struct run *r, double t)
+{
+    gsn_explicit_set_load_factor(r->reference->loop, load_factor(r, t));
 }
 
 /* One history row from the frame just filled: the mean u(X_J) over the
  * surface's particles and the force the supports apply through it, the
  * resultant of its tractions plus the constraint reactions of the
  * components the entry holds (gsn_constraints_entry: a particle on two
- * surfaces counts once) (DESIGN.md; docs/solver.md, "Boundary values"). */
+ * surfaces counts once) (DESIGN.md; docs/solver.md, "Boundary values"); on
+ * a traction entry, the resultant of the traction it applies. */
 static int write_history_row(struct run *r)
 {
     const struct gsn_explicit *e = r->reference->loop;
@@ -197,6 +256,9 @@ static int write_history_row(struct run *r)
                 if (gsn_constraints_entry(r->reference->constraints,
                                           set->particle[s], k) == b)
                     force[k] += e->reaction[3 * set->particle[s] + k];
+        /* a traction entry: the force it applies, ramped as applied */
+        for (int k = 0; k < 3; ++k)
+            force[k] += e->load_factor * r->traction_force[b][k];
         for (int k = 0; k < 3; ++k)
             mean[k] = set->count ? mean[k] / set->count : 0.0;
         fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", mean[0], mean[1],
@@ -210,9 +272,7 @@ static int write_history_row(struct run *r)
             e->kinetic_energy, e->internal_energy, e->external_work, max_damage,
             e->damping_work, r->reference->update_count,
             r->reference->energy_jump, e->dead_count);
-    fflush(r->history);
-    GSN_CHECK(!ferror(r->history), GSN_ERR_IO, "%s: cannot write",
-              r->history_path);
+    GSN_CALL(history_flush(r));
     return GSN_OK;
 }
 
@@ -407,8 +467,7 @@ static int write_checkpoint(struct run *r)
     GSN_CALL_GOTO(
         gsn_h5_attr_write_int(group, GSN_FRAME_ATTR_STEP, (int)e->step), rc,
         done);
-    GSN_CHECK_GOTO(H5Fflush(r->results, H5F_SCOPE_GLOBAL) >= 0, rc, GSN_ERR_IO,
-                   done, "%s: cannot flush", r->results_temporary);
+    GSN_CALL_GOTO(gsn_h5_flush(r->results), rc, done);
 done:
     gsn_h5_close(&group);
     return rc;
@@ -418,10 +477,10 @@ static int read_checkpoint(struct run *r)
 {
     struct gsn_explicit *e = r->reference->loop;
     GSN_CHECK(gsn_h5_exists(r->results, GSN_CHECKPOINT_GROUP), GSN_ERR_INPUT,
-              "%s: no checkpoint to restart from", r->results_temporary);
+              "%s: no checkpoint to restart from", r->results_path);
     hid_t group = H5Gopen2(r->results, GSN_CHECKPOINT_GROUP, H5P_DEFAULT);
     GSN_CHECK(group >= 0, GSN_ERR_IO, "%s: cannot open the checkpoint",
-              r->results_temporary);
+              r->results_path);
     int rc = GSN_OK, step = 0;
     double energy[4];
     GSN_CALL_GOTO(read_checkpoint_reference(r, group), rc, done);
@@ -465,6 +524,7 @@ static int read_checkpoint(struct run *r)
     e->internal_energy = energy[1];
     e->external_work = energy[2];
     e->damping_work = energy[3];
+    apply_loads(r, e->time);
     GSN_CALL_GOTO(gsn_explicit_refresh(e), rc, done);
 done:
     gsn_h5_close(&group);
@@ -732,6 +792,7 @@ static int update_reference(struct run *r)
         return GSN_OK;
     struct gsn_reference_report report;
     GSN_CALL(gsn_reference_update(r->reference, &report));
+    traction_resultants(r);
     const struct gsn_explicit *e = r->reference->loop;
     if (!r->options->quiet) {
         const double *x = &r->model.position[3 * report.particle];
@@ -757,17 +818,22 @@ static int run_loop(struct run *r)
 {
     double started = now_seconds(), last_print = started;
     long first = r->reference->loop->step;
-    int quiet = r->options->quiet;
+    int quiet = r->options->quiet, tty = isatty(STDERR_FILENO);
+    double interval = r->options->progress_seconds > 0.0
+                          ? r->options->progress_seconds
+                          : PROGRESS_INTERVAL;
     while (r->reference->loop->step < r->total_steps) {
         if (stop_signal)
             return stop_for_signal(r);
-        GSN_CALL(gsn_explicit_step(r->reference->loop));
+        struct gsn_explicit *e = r->reference->loop;
+        apply_loads(r, (double)(e->step + 1) * e->dt);
+        GSN_CALL(gsn_explicit_step(e));
         GSN_CALL(check_energy(r));
         /* before the outputs of the step, so that its checkpoint holds the
          * new reference (a restart then continues on it; also at the last
          * step, which a longer run continues) */
         GSN_CALL(update_reference(r));
-        struct gsn_explicit *e = r->reference->loop;
+        e = r->reference->loop;
         /* Frames at the steps nearest the frame times before the end, and
          * one at the last step (not also one a step before it). */
         int last = e->step == r->total_steps;
@@ -786,11 +852,15 @@ static int run_loop(struct run *r)
         if (due || last || row_due)
             r->next_row_time =
                 next_multiple(r->c->history_every, e->time, e->dt);
+        /* On a terminal a line rewritten twice a second; into a file, a
+         * line at every tenth of the run and every progress interval. */
         double t = now_seconds();
-        if (!quiet && (t - last_print > 0.5 || last) &&
-            (isatty(STDERR_FILENO) || last ||
-             (e->step * 10) / r->total_steps !=
-                 ((e->step - 1) * 10) / r->total_steps)) {
+        int tenth = (e->step * 10) / r->total_steps !=
+                    ((e->step - 1) * 10) / r->total_steps;
+        int print =
+            tty ? t - last_print > 0.5
+                : (tenth && t - last_print > 0.5) || t - last_print >= interval;
+        if (!quiet && (last || print)) {
             print_progress(r, started, first, last);
             last_print = t;
         }
@@ -939,12 +1009,42 @@ static int check_not_interrupted(const struct run *r)
     return GSN_OK;
 }
 
+/* What a restart needs of the results it continues (open, read-only):
+ * the same model.h5, the same case (check_restart_case) and a checkpoint
+ * it can continue from, which is read. */
+static int check_restart(struct run *r, const char *model_hash,
+                         int *was_complete)
+{
+    char *stored = NULL;
+    if (H5Aexists(r->results, GSN_RESULTS_ATTR_MODEL_HASH) > 0)
+        GSN_CALL(gsn_h5_attr_read_string(r->results,
+                                         GSN_RESULTS_ATTR_MODEL_HASH, &stored));
+    int same = !stored || strcmp(stored, model_hash) == 0;
+    free(stored);
+    GSN_CHECK(same, GSN_ERR_INPUT,
+              "%s: --restart continues the run in %s, but %s changed since "
+              "it started (pre ran again?): its particles are not the "
+              "checkpoint's; start over without --restart",
+              r->c->path, r->results_path, r->model_path);
+    *was_complete = 0; /* a run killed before its first flush lacks it */
+    if (H5Aexists(r->results, GSN_RESULTS_ATTR_COMPLETE) > 0)
+        GSN_CALL(gsn_h5_attr_read_int(r->results, GSN_RESULTS_ATTR_COMPLETE,
+                                      was_complete));
+    GSN_CALL(check_restart_case(r));
+    GSN_CALL(read_checkpoint(r));
+    GSN_CHECK(access(r->history_path, R_OK) == 0, GSN_ERR_INPUT,
+              "%s: missing; cannot restart (start over without --restart)",
+              r->history_path);
+    return GSN_OK;
+}
+
 /* Opens results and history for a fresh run, or for a restart from the
  * checkpoint of an earlier run's results (complete or cut short). */
 static int open_outputs(struct run *r)
 {
     struct gsn_explicit *e = r->reference->loop;
-    char *case_yaml = NULL;
+    char *case_yaml = NULL, model_hash[GSN_FILE_HASH_SIZE];
+    GSN_CALL(gsn_file_hash(r->model_path, model_hash));
     if (!r->options->restart) {
         GSN_CALL(check_not_interrupted(r));
         GSN_CALL(gsn_case_to_yaml_string(r->c, &case_yaml));
@@ -954,8 +1054,14 @@ static int open_outputs(struct run *r)
         GSN_CALL(rc);
         GSN_CALL(gsn_h5_attr_write_string(
             r->results, GSN_RESULTS_ATTR_CASE_NAME, r->case_name));
+        GSN_CALL(gsn_h5_attr_write_string(
+            r->results, GSN_RESULTS_ATTR_MODEL_HASH, model_hash));
+        /* before the first frame's flush: a run killed after it has it */
+        GSN_CALL(
+            gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_COMPLETE, 0));
         r->history = fopen(r->history_path, "w");
-        GSN_CHECK(r->history, GSN_ERR_IO, "%s: cannot create", r->history_path);
+        if (!r->history)
+            return GSN_WRITE_ERROR(r->history_path, errno, "cannot create");
         GSN_CALL(write_history_header(r));
         GSN_CALL(write_output(r, 0)); /* the frame at t = 0 */
         schedule_outputs(r);
@@ -968,17 +1074,20 @@ static int open_outputs(struct run *r)
               "%s: not found: there is no run to restart in %s; solve "
               "without --restart",
               r->results_path, r->outdir);
+    /* Checked where they are, read-only, so that a refused restart leaves
+     * the files as they were; then written under the temporary name. */
+    GSN_CALL(gsn_h5_open(part ? r->results_temporary : r->results_path,
+                         GSN_FILE_KIND_RESULTS, 0, &r->results));
+    int was_complete = 0;
+    int rc = check_restart(r, model_hash, &was_complete);
+    gsn_h5_close(&r->results);
+    GSN_CALL(rc);
     if (!part)
         GSN_CHECK(rename(r->results_path, r->results_temporary) == 0,
                   GSN_ERR_IO, "cannot rename %s for the restart",
                   r->results_path);
     GSN_CALL(gsn_h5_open(r->results_temporary, GSN_FILE_KIND_RESULTS, 1,
                          &r->results));
-    int was_complete = 0;
-    GSN_CALL(gsn_h5_attr_read_int(r->results, GSN_RESULTS_ATTR_COMPLETE,
-                                  &was_complete));
-    GSN_CALL(check_restart_case(r));
-    GSN_CALL(read_checkpoint(r));
     /* The case may have a later time.end: it is the case of the results. */
     GSN_CALL(gsn_case_to_yaml_string(r->c, &case_yaml));
     int written =
@@ -1004,7 +1113,6 @@ static int open_outputs(struct run *r)
     GSN_CHECK(old, GSN_ERR_INPUT, "%s: missing; cannot restart",
               r->history_path);
     r->history = fopen(temporary, "w");
-    int rc = GSN_OK;
     GSN_CHECK_GOTO(r->history, rc, GSN_ERR_IO, fail, "%s: cannot create",
                    temporary);
     int header = 1;
@@ -1123,6 +1231,91 @@ static long planned_frames(const struct run *r, double *frame_bytes)
     return frames;
 }
 
+/* A warning for gravity or tractions applied at full value at t = 0, with
+ * a ramp to suggest: SUDDEN_LOAD_PERIODS periods of the body's lowest mode,
+ * taken as a layer of height H on a fixed base, 4 H / c_s (H the body's
+ * extent along gravity, or its largest extent for tractions alone). */
+static void warn_sudden_load(const struct run *r, int gravity, int traction)
+{
+    const struct gsn_case *c = r->c;
+    const struct gsn_model *m = &r->model;
+    double g =
+        sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1] +
+             c->gravity[2] * c->gravity[2]);
+    double height = 0.0;
+    for (int axis = gravity ? -1 : 0; axis < (gravity ? 0 : 3); ++axis) {
+        double low = INFINITY, high = -INFINITY;
+        for (int i = 0; i < m->particle_count; ++i) {
+            const double *x = &m->position[3 * i];
+            double along = axis >= 0
+                               ? x[axis]
+                               : (x[0] * c->gravity[0] + x[1] * c->gravity[1] +
+                                  x[2] * c->gravity[2]) /
+                                     g;
+            low = fmin(low, along);
+            high = fmax(high, along);
+        }
+        height = fmax(height, high - low);
+    }
+    double period =
+        4.0 * height / sqrt(c->material.shear_modulus / c->material.density);
+    double ramp = SUDDEN_LOAD_PERIODS * period;
+    double unit = pow(10.0, floor(log10(ramp))); /* one significant digit up */
+    ramp = ceil(ramp / unit) * unit;
+    char end[96] = "";
+    if (ramp > c->time_end)
+        snprintf(end, sizeof end, " (and time.end %g s at least)", ramp);
+    fprintf(stderr,
+            "warning: %s: %s applied at full value at t = 0 (time.ramp is "
+            "0): a sudden load makes the body oscillate about its static "
+            "deformation, up to twice it%s; 'time: {ramp: %g}'%s raises the "
+            "loads smoothly over %g periods of the body's lowest mode (4 H / "
+            "c_s = %.2g s with H = %.3g m), and prescribed velocities with "
+            "them\n",
+            c->path,
+            gravity && traction ? "gravity and tractions are"
+            : gravity           ? "gravity is"
+                                : "tractions are",
+            c->material.has_damage
+                ? ", and damage, which counts every oscillation, grows"
+                : "",
+            ramp, end, SUDDEN_LOAD_PERIODS, period, height);
+}
+
+/* The dead loads: each traction added to f_ext (its resultant kept for
+ * history.csv), and f_ext kept at full value to be ramped with time.ramp
+ * (apply_loads); warnings for a case that nothing loads and for loads
+ * applied at once. */
+static int setup_loads(struct run *r)
+{
+    const struct gsn_case *c = r->c;
+    int traction = 0;
+    for (int b = 0; b < c->boundary_count; ++b) {
+        const struct gsn_boundary *entry = &c->boundaries[b];
+        for (int k = 0; k < 3; ++k) {
+            r->loading |= entry->has_velocity[k] && entry->velocity[k] != 0.0;
+            traction |= entry->traction[k] != 0.0;
+        }
+    }
+    traction_resultants(r);
+    int gravity =
+        c->gravity[0] != 0.0 || c->gravity[1] != 0.0 || c->gravity[2] != 0.0;
+    if (!r->loading && !traction && !gravity)
+        fprintf(stderr,
+                "warning: %s: nothing loads the body (no gravity, no nonzero "
+                "velocity or traction on a boundary): it stays at rest\n",
+                c->path);
+    if (!gravity && !traction)
+        return GSN_OK;
+    if (!(c->time_ramp > 0.0)) {
+        warn_sudden_load(r, gravity, traction);
+        return GSN_OK;
+    }
+    apply_loads(r, 0.0);
+    GSN_CALL(gsn_explicit_refresh(r->reference->loop));
+    return GSN_OK;
+}
+
 static int run_setup(struct run *r)
 {
     const struct gsn_case *c = r->c;
@@ -1137,20 +1330,7 @@ static int run_setup(struct run *r)
                                        &c->material, &r->material));
     GSN_CALL(gsn_reference_create(&r->model, c, r->material, c->time_step,
                                   r->options->threads, &r->reference));
-    int traction = 0;
-    for (int b = 0; b < c->boundary_count; ++b)
-        for (int k = 0; k < 3; ++k) {
-            r->loading |= c->boundaries[b].has_velocity[k] &&
-                          c->boundaries[b].velocity[k] != 0.0;
-            traction |= c->boundaries[b].traction[k] != 0.0;
-        }
-    int gravity =
-        c->gravity[0] != 0.0 || c->gravity[1] != 0.0 || c->gravity[2] != 0.0;
-    if (!r->loading && !traction && !gravity)
-        fprintf(stderr,
-                "warning: %s: nothing loads the body (no gravity, no nonzero "
-                "velocity or traction on a boundary): it stays at rest\n",
-                c->path);
+    GSN_CALL(setup_loads(r));
     r->damage_offset = gsn_material_state_offset(r->material->ops, "damage");
     r->plastic_offset = gsn_material_state_offset(r->material->ops,
                                                   "equivalent_plastic_strain");

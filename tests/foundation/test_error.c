@@ -56,6 +56,20 @@ int main(void)
     TEST_TRUE(strstr(text, "[bad input]") != NULL);
     free(text);
 
+    /* What a user sees: the message alone, the chain with --verbose. */
+    stream = open_memstream(&text, &size);
+    gsn_error_print_user(stream, 0);
+    fclose(stream);
+    TEST_TRUE(strcmp(text, "error: value must be > 0, got -1\n") == 0);
+    free(text);
+    stream = open_memstream(&text, &size);
+    gsn_error_print_user(stream, 1);
+    fclose(stream);
+    TEST_TRUE(strstr(text, "raised in raise_input") != NULL);
+    free(text);
+    TEST_INT(gsn_error_exit_status(GSN_ERR_NO_SPACE), 1);
+    TEST_INT(gsn_error_exit_status(GSN_ERR_BUSY), 2);
+
     int cleaned = 0;
     gsn_error_clear();
     TEST_INT(cleanup_path(0, &cleaned), GSN_ERR_INPUT);

@@ -147,26 +147,29 @@ done:
     return rc;
 }
 
-/* history.csv: the footing moves down at 0.01 m/s against a reaction that
- * grows and levels off; the energies are smooth functions of time. */
+/* history.csv (units after the column names, as solve writes it): the
+ * footing moves down at 0.01 m/s pushing the body with a force that grows
+ * and levels off, which the bottom carries; the energies are smooth
+ * functions of time. */
 static int synthetic_history_write(const char *folder, int rows)
 {
     char path[GSN_PATH_SIZE];
     GSN_CALL(gsn_path_join(path, sizeof path, folder, "history.csv"));
     FILE *file = fopen(path, "w");
     GSN_CHECK(file != NULL, GSN_ERR_IO, "cannot write %s", path);
-    fprintf(file, "time,step,bottom_ux,bottom_uy,bottom_uz,bottom_fx,"
-                  "bottom_fy,bottom_fz,footing_ux,footing_uy,footing_uz,"
-                  "footing_fx,footing_fy,footing_fz,kinetic_energy,"
-                  "internal_energy,external_work,max_damage\n");
+    fprintf(file, "time_s,step,bottom_ux_m,bottom_uy_m,bottom_uz_m,"
+                  "bottom_fx_N,bottom_fy_N,bottom_fz_N,footing_ux_m,"
+                  "footing_uy_m,footing_uz_m,footing_fx_N,footing_fy_N,"
+                  "footing_fz_N,kinetic_energy_J,internal_energy_J,"
+                  "external_work_J,max_damage\n");
     for (int r = 0; r < rows; ++r) {
         double t = 1.5 * r / (rows - 1), settlement = 0.01 * t;
         double force = 4e5 * (1.0 - exp(-settlement / 0.004));
         fprintf(file,
                 "%.17g,%d,0,0,0,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
                 "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                t, 1000 * r, 1e2 * t, -2e2 * t, -force, 1e-5 * t, -2e-5 * t,
-                -settlement, 3e2 * t, 5e1 * t, force, 0.5 * 1880 * 9.6 * 1e-4,
+                t, 1000 * r, 1e2 * t, -2e2 * t, force, 1e-5 * t, -2e-5 * t,
+                -settlement, 3e2 * t, 5e1 * t, -force, 0.5 * 1880 * 9.6 * 1e-4,
                 0.8 * force * settlement, 0.9 * force * settlement,
                 fmin(1.0, t / 1.5));
     }

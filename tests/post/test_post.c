@@ -215,11 +215,53 @@ static void test_history(void)
     unlink(path);
 }
 
+/* Units after the column names (solve's header) are found by the bare
+ * names; the load-settlement curve keeps the force's sign along the
+ * motion: a footing moved down (-z) that first holds the body back (its
+ * force on the body up, +z) plots below zero, as does a heave. */
+static void test_history_signed_curve(void)
+{
+    char path[GSN_PATH_SIZE];
+    folder_path(path, sizeof path, "history.csv");
+    FILE *file = fopen(path, "w");
+    TEST_TRUE(file != NULL);
+    if (!file)
+        return;
+    fputs("time_s,step,f_ux_m,f_uy_m,f_uz_m,f_fx_N,f_fy_N,f_fz_N,"
+          "kinetic_energy_J\n"
+          "0,0,0,0,0,0,0,0,0\n"
+          "0.1,10,0,0,0.0005,0,0,1000,1\n"
+          "0.2,20,0,0,-0.001,0,0,-2000,2\n",
+          file);
+    fclose(file);
+    struct gsn_history h;
+    TEST_INT(gsn_history_read(path, &h), GSN_OK);
+    TEST_INT(gsn_history_column(&h, "time"), 0);
+    TEST_INT(gsn_history_column(&h, "f_fz"), 7);
+    TEST_INT(gsn_history_column(&h, "kinetic_energy"), 8);
+    TEST_INT(gsn_history_column(&h, "f_f"), -1); /* not a unit after it */
+    TEST_INT(gsn_history_column(&h, "tim"), -1);
+    const double down[3] = {0.0, 0.0, -1.0};
+    double x[3] = {0}, y[3] = {0};
+    TEST_INT(gsn_history_motion_curve(&h, "f", down, 1.0, x, y), GSN_OK);
+    /* exact: a product with -1 and a scaling by 1e-3 of decimal values */
+    TEST_NEAR(x[1], -0.0005, 0.0);
+    TEST_NEAR(y[1], -1.0, 1e-15);
+    TEST_NEAR(x[2], 0.001, 0.0);
+    TEST_NEAR(y[2], 2.0, 1e-15);
+    TEST_INT(gsn_history_motion_curve(&h, "g", down, 1.0, x, y), GSN_ERR_INPUT);
+    TEST_TRUE(strstr(gsn_error_message(), "g_ux") != NULL);
+    gsn_error_clear();
+    gsn_history_free(&h);
+    unlink(path);
+}
+
 int main(void)
 {
     test_begin();
     TEST_TRUE(mkdtemp(root) != NULL);
     test_history();
+    test_history_signed_curve();
     test_output();
     test_errors();
     char command[GSN_PATH_SIZE + 16];

@@ -31,7 +31,7 @@ ratio=$(h5dump -a /kinetic_ratio_max "$out/results.h5" |
 # q / (c N_c) at settlements of 10% and 12.5% of B, interpolated between
 # rows; the footing area is b T = 1 m x 0.4 m (strip_footing.geo, T = 2h).
 awk -F, -v ratio="$ratio" '
-    NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "footing_uz") u = i; if ($i == "footing_fz") f = i }; next }
+    NR == 1 { for (i = 1; i <= NF; ++i) { if ($i ~ /^footing_uz(_m)?$/) u = i; if ($i ~ /^footing_fz(_N)?$/) f = i }; next }
     { s = -$u / 2.0; q = -$f / 0.4 / 1.0568e6
       for (k = 1; k <= 2; ++k) { t = 0.075 + 0.025 * k
           if (!(k in at) && s >= t) at[k] = prev_q + (q - prev_q) * (t - prev_s) / (s - prev_s) }

@@ -31,12 +31,12 @@ static void read_history(const char *folder, int axis, struct record *r)
         return;
     int top_column = -1, kinetic = -1, column = 0;
     TEST_TRUE(fgets(line, sizeof line, file) != NULL);
-    const char *names[3] = {"zmax_ux", "zmax_uy", "zmax_uz"};
+    const char *names[3] = {"zmax_ux_m", "zmax_uy_m", "zmax_uz_m"};
     for (char *token = strtok(line, ",\n"); token;
          token = strtok(NULL, ",\n"), ++column) {
         if (strcmp(token, names[axis]) == 0)
             top_column = column;
-        if (strcmp(token, "kinetic_energy") == 0)
+        if (strcmp(token, "kinetic_energy_J") == 0)
             kinetic = column;
     }
     TEST_TRUE(top_column >= 0 && kinetic >= 0);

@@ -36,7 +36,7 @@ fi
 # is checked by check_economy.py (u_x on it), because in this load case the
 # force without the plane is only 1 % lower.
 force() {
-    awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "top_fz") c = i }
+    awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "top_fz_N") c = i }
              END { print $c }' "$1"
 }
 whole=$(force "$out/whole/history.csv")

@@ -62,7 +62,7 @@ static void check_ramped_motion(void)
     const double lo[3] = {0, 0, 0}, hi[3] = {0.75, 0.75, 1.25};
     TEST_INT(fixture_solve_box(&c, folder, count, lo, hi, 0.2), GSN_OK);
     static double row[MAX_ROWS * 2];
-    const char *names[] = {"time", "zmax_uz"};
+    const char *names[] = {"time_s", "zmax_uz_m"};
     int rows = fixture_history(folder, names, 2, row, MAX_ROWS);
     TEST_TRUE(rows >= 30);
     double worst = 0.0;
@@ -91,8 +91,9 @@ static void check_damped_column(void)
     const double lo[3] = {0, 0, 0}, hi[3] = {0.5, 0.5, 10.0};
     TEST_INT(fixture_solve_box(&c, folder, count, lo, hi, 0.0), GSN_OK);
     static double row[MAX_ROWS * 6];
-    const char *names[] = {"zmax_uz",       "kinetic_energy", "internal_energy",
-                           "external_work", "damping_work",   "time"};
+    const char *names[] = {"zmax_uz_m",         "kinetic_energy_J",
+                           "internal_energy_J", "external_work_J",
+                           "damping_work_J",    "time_s"};
     int rows = fixture_history(folder, names, 6, row, MAX_ROWS);
     TEST_TRUE(rows >= 300);
     if (rows < 2)

@@ -20,7 +20,7 @@ for kinematics in large small; do
         "$geoscni" solve "$out/$kinematics/case.yaml" -o "$out/$kinematics" -q ||
         { fail "the $kinematics run failed"; continue; }
     awk -F, -v kinematics="$kinematics" '
-        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "zmax_uz") u = i; if ($i == "zmax_fz") f = i }; next }
+        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "zmax_uz_m") u = i; if ($i == "zmax_fz_N") f = i }; next }
         { e = -$u; F = -$f
           for (k = 1; k <= 2; ++k) { t = k == 1 ? 0.10 : 0.25
               if (!(k in at) && e >= t - 1e-9) at[k] = prev_F + (F - prev_F) * (t - prev_e) / (e - prev_e) }

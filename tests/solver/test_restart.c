@@ -7,7 +7,8 @@
  * writes the uninterrupted run's frames, at the same steps with the same
  * bits, plus the frame where the first part ended; a frame that the first
  * part wrote after its checkpoint (as a run killed between checkpoints
- * leaves) is dropped and written again. */
+ * leaves) is dropped and written again. Likewise with gravity ramped
+ * (time.ramp) across the cut. */
 #include "geoscni/case.h"
 #include "geoscni/results.h"
 #include "geoscni/solver.h"
@@ -193,6 +194,17 @@ int main(void)
     /* Bit for bit: sums are gathered in point order on any thread count. */
     TEST_TRUE(same_last_frame(whole, single));
 
+    /* Gravity ramped with time.ramp past the cut (issue 21, point 5): the
+     * restart sets the loads of its checkpoint's time, the same bits. */
+    static char whole_ramp[] = "/tmp/geoscni-test-whole-ramp-XXXXXX";
+    static char parts_ramp[] = "/tmp/geoscni-test-parts-ramp-XXXXXX";
+    c.time_ramp = 0.75 * c.time_end;
+    run(&c, c.time_end, 0, whole_ramp, 2);
+    run(&c, 0.5 * c.time_end, 0, parts_ramp, 2);
+    run(&c, c.time_end, 1, parts_ramp, 2);
+    TEST_TRUE(same_last_frame(whole_ramp, parts_ramp));
+    c.time_ramp = 0.0;
+
     /* Frames every 0.01 s and at listed times (two on nearby steps, one on
      * a multiple of every), across a restart. */
     const double times[] = {0.0033, 0.0151, 0.0163, 0.02, 0.0271};
@@ -206,13 +218,14 @@ int main(void)
     run(&c, c.time_end, 1, parts_times, 2);
     check_restart_frames(whole_times, parts_times, cut_step);
 
-    /* With reference updates every 0.005 s (issue 15, point 7): a run
-     * stopped after some and continued builds the checkpoint's reference
+    /* With reference updates every 0.005 s, at any step (issue 15, point 7): a
+     * run stopped after some and continued builds the checkpoint's reference
      * again and ends with the uninterrupted run's bits; so does a run on
      * one thread. */
     c.output_time_count = 0;
     c.reference_update = 1;
     c.reference_every = 0.005;
+    c.reference_min_steps = 1;
     static char whole_updates[] = "/tmp/geoscni-test-whole-updates-XXXXXX";
     static char parts_updates[] = "/tmp/geoscni-test-parts-updates-XXXXXX";
     static char single_updates[] = "/tmp/geoscni-test-single-updates-XXXXXX";
@@ -224,10 +237,10 @@ int main(void)
     TEST_TRUE(same_last_frame(whole_updates, parts_updates));
     TEST_TRUE(same_last_frame(whole_updates, single_updates));
 
-    char command[800];
-    snprintf(command, sizeof command, "rm -rf %s %s %s %s %s %s %s %s", whole,
-             parts, single, whole_times, parts_times, whole_updates,
-             parts_updates, single_updates);
+    char command[1000];
+    snprintf(command, sizeof command, "rm -rf %s %s %s %s %s %s %s %s %s %s",
+             whole, parts, single, whole_times, parts_times, whole_ramp,
+             parts_ramp, whole_updates, parts_updates, single_updates);
     TEST_INT(system(command), 0);
     return test_end("test_restart");
 }

@@ -1,8 +1,10 @@
 #!/bin/sh
-# geoscni run skips a stage whose output is newer than its inputs and was
-# made from the same parameters: a second run skips all three; a changed
-# material reruns solve and post but not pre; a touched geometry reruns
-# everything; --rerun reruns everything.
+# geoscni run skips a stage whose output was made from the same parameters
+# and from inputs of the same contents (hashes stored in the outputs, not
+# modification times): a second run skips all three; a changed material
+# reruns solve and post but not pre; a touched geometry (same contents)
+# skips all three; a changed geometry with an old modification time reruns
+# everything, and so does --rerun.
 . ./cli_testing.sh
 work=$out
 cp ../../geometries/box.geo "$work/box.geo"
@@ -23,7 +25,24 @@ grep -q "solve skipped" "$work/log" && fail "a changed material did not rerun so
 sleep 1
 touch "$work/box.geo"
 run "$work/case.yaml"
-[ "$(skipped)" -eq 0 ] || fail "a touched geometry skipped $(skipped) stages"
+[ "$(skipped)" -eq 3 ] || fail "a touched geometry (same contents) skipped $(skipped) stages, expected 3"
+echo "// edited" >>"$work/box.geo"
+touch -d "2000-01-01" "$work/box.geo"
+run "$work/case.yaml"
+[ "$(skipped)" -eq 0 ] || fail "a changed geometry older than the outputs skipped $(skipped) stages"
+# results.h5 of other contents (one value of its last frame changed, with
+# an old modification time) reruns post but not solve, whose inputs are
+# the same
+/usr/bin/python3 -c '
+import sys, h5py
+with h5py.File(sys.argv[1], "r+") as f:
+    last = sorted(f["frames"])[-1]
+    f["frames"][last]["damage"][0] += 0.5
+' "$work/out/results.h5" || fail "cannot change results.h5 (h5py)"
+touch -d "2000-01-01" "$work/out/results.h5"
+run "$work/case.yaml"
+grep -q "solve skipped" "$work/log" || fail "changed results reran solve"
+grep -q "post skipped" "$work/log" && fail "other results.h5 contents did not rerun post"
 run "$work/case.yaml" --rerun
 [ "$(skipped)" -eq 0 ] || fail "--rerun skipped a stage"
 finish

@@ -23,7 +23,7 @@ rows=$(wc -l <"$out/ok/history.csv")
 # the frames announced before the run are the frames written
 "$geoscni" solve cases/cli_box.yaml -o "$out/ok" >"$out/log" 2>&1 || fail "solve again failed"
 grep -q "^output: 6 frames of " "$out/log" || fail "frames announced: $(grep '^output' "$out/log")"
-head -1 "$out/ok/history.csv" | grep -q "^time,step,bottom_ux,bottom_uy,bottom_uz,bottom_fx,bottom_fy,bottom_fz,top_ux" ||
+head -1 "$out/ok/history.csv" | grep -q "^time_s,step,bottom_ux_m,bottom_uy_m,bottom_uz_m,bottom_fx_N,bottom_fy_N,bottom_fz_N,top_ux_m" ||
     fail "history header: $(head -1 "$out/ok/history.csv")"
 
 "$geoscni" pre cases/cli_box_big_step.yaml -o "$out/big" -q || fail "pre failed"
@@ -63,7 +63,7 @@ grep -q "1 of 3 cases failed" "$out/err" || fail "batch message: $(tail -3 "$out
 [ -s "$out/gauss/cli_box_gauss.pvd" ] || fail "gauss: no .pvd"
 rows=$(wc -l <"$out/gauss/history.csv")
 [ "$rows" -eq 7 ] || fail "gauss: history.csv has $rows lines, expected 7"
-column=$(head -1 "$out/ok/history.csv" | tr ',' '\n' | grep -n '^top_fz$' | cut -d: -f1)
+column=$(head -1 "$out/ok/history.csv" | tr ',' '\n' | grep -n '^top_fz_N$' | cut -d: -f1)
 scni=$(tail -1 "$out/ok/history.csv" | cut -d, -f"$column")
 gauss=$(tail -1 "$out/gauss/history.csv" | cut -d, -f"$column")
 awk -v a="$gauss" -v b="$scni" 'BEGIN { exit !(b < 0 && a / b > 0.9 && a / b < 1.1) }' ||

@@ -31,6 +31,9 @@ enum { GSN_MAX_OUTPUT_TIMES = 1000 };
 #define GSN_DEFAULT_REFERENCE_STRAIN 0.2
 #define GSN_DEFAULT_REFERENCE_VOLUME_MIN 0.7
 #define GSN_DEFAULT_REFERENCE_VOLUME_MAX 1.4
+/* ... and at least this many steps pass between two updates, which bounds
+ * their cost: an update costs some 100 to 300 steps (docs/solver.md). */
+#define GSN_DEFAULT_REFERENCE_MIN_STEPS 500
 #define GSN_DEFAULT_MAX_PARTICLES 5000000 /* more needs --force */
 
 /* Defaults of the economy keys (docs/economy.md). */
@@ -107,6 +110,11 @@ struct gsn_case {
     enum gsn_stabilization stabilization;
     double stabilization_coefficient; /* MSCNI weight of the sub-cells */
     struct gsn_material material;
+    /* lines of the material's keys in the case file (0: not given), for
+     * messages */
+    struct {
+        int density, bulk_modulus, shear_modulus, R;
+    } material_line;
     double gravity[3]; /* m/s^2 */
     int boundary_count;
     struct gsn_boundary boundaries[GSN_MAX_BOUNDARIES];
@@ -125,6 +133,7 @@ struct gsn_case {
     double reference_strain;    /* |E| since the last update */
     double reference_volume[2]; /* det F since the last update */
     double reference_every;     /* s between updates at most; 0: none */
+    int reference_min_steps;    /* steps between two updates at least */
     int reference_update_line;  /* line of the key, 0 if absent */
     double output_every;        /* s between frames; 0: none (output.times
                                    alone) */
@@ -163,6 +172,12 @@ void gsn_case_name(const char *path, char *out, size_t size);
  * output is up to date when the model it wrote carries the same line and
  * is newer than the geometry file. */
 int gsn_case_pre_signature(const struct gsn_case *c, char *out, size_t size);
+
+/* Writes a warning for each value that is legal but implausible for soil,
+ * with the unit mistake it likely is (a density of 1.88, t/m^3 for kg/m^3;
+ * moduli in kPa or MPa for Pa; swapped moduli): "warning: FILE:LINE:
+ * ...". Returns the number of warnings. */
+int gsn_case_warn_implausible(const struct gsn_case *c, FILE *out);
 
 /* Index of a boundary entry by surface name, or -1. */
 int gsn_case_find_boundary(const struct gsn_case *c, const char *name);

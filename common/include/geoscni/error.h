@@ -22,7 +22,9 @@ extern "C" {
     X(GSN_ERR_MEMORY, 1, "out of memory")                                      \
     X(GSN_ERR_LIBRARY, 1, "an external library failed")                        \
     X(GSN_ERR_INTERNAL, 1, "internal error (a bug in geoscni)")                \
-    X(GSN_ERR_INTERRUPTED, 130, "interrupted")
+    X(GSN_ERR_INTERRUPTED, 130, "interrupted")                                 \
+    X(GSN_ERR_NO_SPACE, 1, "no space left on device")                          \
+    X(GSN_ERR_BUSY, 2, "the output folder is in use")
 
 enum gsn_error_code {
 #define GSN_ERROR_ENUM(name, status, text) name,
@@ -54,6 +56,10 @@ const char *gsn_error_message(void);
 /* Prints the chain: the deepest message first, then where it was raised
  * and the frames it passed through. */
 void gsn_error_print(void *stream);
+
+/* What a user sees: "error: MESSAGE" alone, or with verbose the whole
+ * chain (gsn_error_print); an internal error also asks for a report. */
+void gsn_error_print_user(void *stream, int verbose);
 
 /* Forgets the recorded chain. */
 void gsn_error_clear(void);

@@ -25,8 +25,13 @@ int gsn_h5_create(const char *path, const char *kind, const char *case_yaml,
 int gsn_h5_open(const char *path, const char *kind, int writable, hid_t *file);
 
 /* Closes a file (or group) and sets the handle to H5I_INVALID_HID; accepts an
- * invalid handle. */
+ * invalid handle. A write that fails says so, with "no space left on device"
+ * when the disk is full (files.h, gsn_write_error_raise); so do the other
+ * writers below. */
 int gsn_h5_close(hid_t *handle);
+
+/* Writes what HDF5 holds of an open file to disk. */
+int gsn_h5_flush(hid_t file);
 
 /* Refuses a file that lacks any of count datasets, or holds one of another
  * type or column count, naming what is missing. */

@@ -113,6 +113,11 @@ struct gsn_dataset_info {
 #define GSN_RESULTS_ATTR_INTERRUPTED "interrupted"
 /* The energy balance the stability check compares with (checkpoint) */
 #define GSN_CHECKPOINT_ATTR_ENERGY_BASELINE "energy_baseline"
+/* The inputs a file was made from, as gsn_file_hash texts (files.h), so
+ * that run tells an up-to-date stage by contents, not by times: the
+ * geometry file of model.h5, the model.h5 of results.h5. */
+#define GSN_ATTR_GEOMETRY_HASH "geometry_hash"
+#define GSN_RESULTS_ATTR_MODEL_HASH "model_hash"
 
 /* The restart checkpoint of results.h5: the group GSN_CHECKPOINT_GROUP with
  * attributes "time" (s) and "step", holding the whole state of the explicit

@@ -16,6 +16,12 @@ struct gsn_post_options {
  * OUTDIR/vtu/ and the plots. */
 int gsn_post_run(const char *outdir, const struct gsn_post_options *options);
 
+/* 1 if OUTDIR/CASE.pvd was written by post from the results.h5 now in
+ * OUTDIR (its contents' hash, stored in the .pvd) with the pictures the
+ * options ask for; 0 otherwise, and for any problem reading. */
+int gsn_post_up_to_date(const char *outdir,
+                        const struct gsn_post_options *options);
+
 /* The VTK version loaded at run time, e.g. "9.1.0". */
 const char *gsn_post_vtk_version(void);
 

@@ -15,6 +15,8 @@ struct gsn_solve_options {
     int threads;    /* 0: OpenMP's default */
     int quiet;      /* no progress line */
     int start_over; /* replace an interrupted run's results (else refused) */
+    double progress_seconds; /* between progress lines into a file (0: the
+                                default, 10 s) */
 };
 
 /* Reads OUTDIR/model.h5, runs the case, writes OUTDIR/results.h5 and
