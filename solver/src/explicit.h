@@ -78,7 +78,11 @@ struct gsn_explicit {
     double bulk_modulus, shear_modulus; /* Pa, for stabilization points */
     double dt;                          /* s */
     long step;
-    double time; /* step * dt, s */
+    double time; /* s: time_base + (step - step_base) dt */
+    /* where the present step dt began (0, 0 until it changes: a reference
+     * update may change it, gsn_explicit_set_time_step) */
+    double time_base;
+    long step_base;
 
     double *mass;           /* n, kg */
     double *displacement;   /* n x 3 coefficients d_I, m */
@@ -211,7 +215,7 @@ int gsn_explicit_settle(struct gsn_explicit *e);
 
 /* The coefficients c (n x 3) whose field takes the given values (n x 3) at
  * every particle, sum_I Psi_I(X_J) c_I = values_J, by Jacobi iteration
- * from c = values (Psi_J(X_J) dominates its row for a support of 1.5 h) to
+ * by BiCGSTAB with the diagonal as preconditioner, from c = values, to
  * a residual of 1e-13 of the values; GSN_ERR_NUMERICAL if it does not get
  * there. *iterations gets the count (may be NULL). */
 int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
@@ -239,6 +243,13 @@ int gsn_explicit_refresh(struct gsn_explicit *e);
  * previous_displacement to displacement (both set by the caller).
  * gsn_explicit_step calls it; tests drive it with prescribed motions. */
 int gsn_explicit_update_stress(struct gsn_explicit *e);
+
+/* The time of a step at the present time step (s). */
+double gsn_explicit_time_of(const struct gsn_explicit *e, long step);
+
+/* The time step from the present step on (s): steps before keep their
+ * times. */
+void gsn_explicit_set_time_step(struct gsn_explicit *e, double dt);
 
 /* One step from t_n to t_{n+1}. GSN_ERR_NUMERICAL names the step, the time
  * and the particle when a point inverts (det F <= 0), a value is not finite

@@ -34,16 +34,25 @@ static int build(const struct gsn_model *m, const struct gsn_case *c,
                  const struct gsn_material_model *material, double dt,
                  double epoch, struct gsn_quadrature **quadrature,
                  struct gsn_constraints **constraints,
-                 struct gsn_explicit **loop)
+                 struct gsn_explicit **loop,
+                 struct gsn_reference_report *report)
 {
     struct gsn_kernel_options kernel;
     gsn_kernel_options_from_case(c, &kernel);
+    double t0 = omp_get_wtime();
     GSN_CALL(gsn_quadrature_create(m, &kernel, NULL, 0, quadrature));
+    double t1 = omp_get_wtime();
     GSN_CALL(gsn_constraints_create(m, c, &(*quadrature)->particle_values,
                                     constraints));
     gsn_constraints_set_epoch(*constraints, epoch);
+    double t2 = omp_get_wtime();
     GSN_CALL(gsn_explicit_create(m, *quadrature, material, *constraints, c, dt,
                                  loop));
+    if (report) {
+        report->seconds_kernels = t1 - t0;
+        report->seconds_constraints = t2 - t1;
+        report->seconds_loop = omp_get_wtime() - t2;
+    }
     (*loop)->allow_failure = c->reference_update;
     /* The loop reads its own packed copy of the gradient rows
      * (point_blocks.h): the quadrature's are freed, 709 MB of the working
@@ -84,7 +93,7 @@ int gsn_reference_create(const struct gsn_model *original,
                                              : GSN_OK;
     if (rc == GSN_OK)
         rc = build(original, c, material, dt, 0.0, &r->quadrature,
-                   &r->constraints, &r->loop);
+                   &r->constraints, &r->loop, NULL);
     if (rc != GSN_OK) {
         gsn_reference_destroy(&r);
         return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
@@ -215,8 +224,9 @@ static int rebuild(struct gsn_reference *r, const double *x,
     GSN_CALL_GOTO(rc, rc, fail);
     report->seconds_cells = omp_get_wtime() - t0;
     GSN_CALL_GOTO(build(cells, r->c, r->material, old->dt, time, &quadrature,
-                        &constraints, &loop),
+                        &constraints, &loop, report),
                   rc, fail);
+    double t_state = omp_get_wtime();
     for (size_t i = 0; i < 3 * (size_t)n; ++i)
         loop->reference_offset[i] = x[i] - X0->position[i];
     if (carry) {
@@ -228,6 +238,7 @@ static int rebuild(struct gsn_reference *r, const double *x,
     add_tractions(loop, cells, r->c);
     if (carry)
         GSN_CALL_GOTO(gsn_explicit_settle(loop), rc, fail);
+    report->seconds_state = omp_get_wtime() - t_state;
     discretization_free(&r->cells, &r->quadrature, &r->constraints, &r->loop);
     gsn_body_free(&r->body);
     r->body = body;
@@ -285,6 +296,17 @@ int gsn_reference_update(struct gsn_reference *r,
             "up",
             step, time, cause);
     }
+    /* The new reference's cells may be smaller for their particles' masses
+     * than the first (a compressed zone, a remade body) and its stable step
+     * shorter: the step follows it. */
+    double t_stable = omp_get_wtime();
+    GSN_CALL(gsn_explicit_stable_step(r->loop, &report.stable_step));
+    report.seconds_stable = omp_get_wtime() - t_stable;
+    report.seconds += report.seconds_stable;
+    report.time_step = fmin(r->first_step ? r->first_step : r->loop->dt,
+                            r->c->time_step_safety * report.stable_step);
+    if (report.time_step != r->loop->dt)
+        gsn_explicit_set_time_step(r->loop, report.time_step);
     double mass1, momentum1[3], scale1;
     mass_momentum(r->loop, &mass1, momentum1, &scale1);
     report.kinetic_after = r->loop->kinetic_energy;

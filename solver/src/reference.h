@@ -47,11 +47,18 @@ struct gsn_reference_report {
     int particle;             /* where the trigger was measured */
     double strain, volume[2]; /* |E| and det F extremes that triggered */
     double seconds;           /* wall time of the update */
-    double seconds_cells;     /* of it, the cells */
+    /* of it: the body and its cells, the shape functions and integration,
+     * the constraints, the loop (blocks, masses), the state carried over
+     * and settled */
+    double seconds_cells, seconds_kernels, seconds_constraints, seconds_loop,
+        seconds_state;
     double kinetic_before, kinetic_after; /* J */
     double mass_error;                    /* |sum m' - sum m| / sum m */
     double momentum_error;                /* |sum m'v' - sum m v| / sum m |v| */
     int interpolation_iterations;
+    double stable_step, time_step; /* s: of the new reference, and the
+                                      step taken from it on */
+    double seconds_stable;         /* wall time of the stable step */
     int remeshed;        /* 1: the body's tetrahedra were made again */
     int tetrahedra_only; /* 1: the cells needed the tetrahedra throughout */
     double body_quality; /* smallest tetrahedron volume / mean before */
@@ -77,6 +84,9 @@ struct gsn_reference {
     long step;          /* of the present reference */
     double energy_jump; /* J, the kinetic energy the updates added */
     double seconds;     /* wall time of the updates */
+    double first_step;  /* s: the run's time step at its start; an update
+                           takes the new reference's stable step times
+                           time.safety where that is smaller, else this */
     struct gsn_reference_report last;
 };
 

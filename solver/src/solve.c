@@ -467,6 +467,19 @@ static int write_checkpoint(struct run *r)
     GSN_CALL_GOTO(
         gsn_h5_attr_write_int(group, GSN_FRAME_ATTR_STEP, (int)e->step), rc,
         done);
+    GSN_CALL_GOTO(gsn_h5_attr_write_double(group,
+                                           GSN_CHECKPOINT_ATTR_TIME_STEP_FIRST,
+                                           r->reference->first_step),
+                  rc, done);
+    GSN_CALL_GOTO(
+        gsn_h5_attr_write_double(group, GSN_CHECKPOINT_ATTR_TIME_STEP, e->dt),
+        rc, done);
+    GSN_CALL_GOTO(gsn_h5_attr_write_double(group, GSN_CHECKPOINT_ATTR_TIME_BASE,
+                                           e->time_base),
+                  rc, done);
+    GSN_CALL_GOTO(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_STEP_BASE,
+                                        (int)e->step_base),
+                  rc, done);
     GSN_CALL_GOTO(gsn_h5_flush(r->results), rc, done);
 done:
     gsn_h5_close(&group);
@@ -504,22 +517,47 @@ static int read_checkpoint(struct run *r)
     GSN_CALL_GOTO(
         gsn_h5_attr_read_double(group, GSN_FRAME_ATTR_TIME, &saved_time), rc,
         done);
-    /* the same step gives the same time to rounding; another step would
-     * continue the old state on another clock */
-    GSN_CHECK_GOTO(fabs(saved_time - (double)step * e->dt) <=
-                       1e-9 * fmax(saved_time, e->dt),
-                   rc, GSN_ERR_INPUT, done,
-                   "%s: its checkpoint is at step %d, t = %.9g s, but this "
-                   "run's time step %.9g s puts that step at %.9g s: the time "
-                   "step changed; start over without --restart",
-                   r->results_path, step, saved_time, e->dt,
-                   (double)step * e->dt);
-    GSN_CHECK_GOTO(step <= r->total_steps, rc, GSN_ERR_INPUT, done,
+    /* The clock: the step the run started with must be this run's (another
+     * would continue the old state on another clock); the step of the
+     * checkpoint, which a reference update may have changed, goes on. */
+    double first = e->dt, now_step = e->dt, base_time = 0.0;
+    int base_step = 0;
+    if (H5Aexists(group, GSN_CHECKPOINT_ATTR_TIME_STEP_FIRST) > 0) {
+        GSN_CALL_GOTO(gsn_h5_attr_read_double(
+                          group, GSN_CHECKPOINT_ATTR_TIME_STEP_FIRST, &first),
+                      rc, done);
+        GSN_CALL_GOTO(gsn_h5_attr_read_double(
+                          group, GSN_CHECKPOINT_ATTR_TIME_STEP, &now_step),
+                      rc, done);
+        GSN_CALL_GOTO(gsn_h5_attr_read_double(
+                          group, GSN_CHECKPOINT_ATTR_TIME_BASE, &base_time),
+                      rc, done);
+        GSN_CALL_GOTO(gsn_h5_attr_read_int(group, GSN_CHECKPOINT_ATTR_STEP_BASE,
+                                           &base_step),
+                      rc, done);
+    }
+    double expected = base_time + (double)(step - base_step) * now_step;
+    GSN_CHECK_GOTO(
+        fabs(first - r->reference->first_step) <= 1e-12 * first &&
+            fabs(saved_time - expected) <= 1e-9 * fmax(saved_time, now_step),
+        rc, GSN_ERR_INPUT, done,
+        "%s: its checkpoint is at step %d, t = %.9g s, of a run "
+        "that started with a time step of %.9g s, but this run's "
+        "time step is %.9g s: the time step changed; start over "
+        "without --restart",
+        r->results_path, step, saved_time, first, r->reference->first_step);
+    e->step = step;
+    e->time = saved_time;
+    e->dt = now_step;
+    e->time_base = base_time;
+    e->step_base = base_step;
+    r->total_steps =
+        e->step + (long)ceil((r->c->time_end - e->time) / e->dt - 1e-9);
+    GSN_CHECK_GOTO(saved_time <= r->c->time_end + 0.5 * e->dt, rc,
+                   GSN_ERR_INPUT, done,
                    "%s: its checkpoint is at t = %.6g s, after this case's "
                    "time.end %.6g s: a restart can only run further",
                    r->results_path, saved_time, r->c->time_end);
-    e->step = step;
-    e->time = (double)step * e->dt;
     e->kinetic_energy = energy[0];
     e->internal_energy = energy[1];
     e->external_work = energy[2];
@@ -613,6 +651,7 @@ static int choose_time_step(struct run *r)
                    stable, c->time_step > stable ? ", forced" : "");
     }
     r->total_steps = (long)ceil(c->time_end / e->dt - 1e-9);
+    r->reference->first_step = e->dt;
     return GSN_OK;
 }
 
@@ -794,21 +833,30 @@ static int update_reference(struct run *r)
     GSN_CALL(gsn_reference_update(r->reference, &report));
     traction_resultants(r);
     const struct gsn_explicit *e = r->reference->loop;
+    /* the steps left at the step the update chose */
+    r->total_steps =
+        e->step + (long)ceil((r->c->time_end - e->time) / e->dt - 1e-9);
     if (!r->options->quiet) {
         const double *x = &r->model.position[3 * report.particle];
 
         fprintf(stderr,
                 "%sreference update %d at step %ld, t = %.4g s (%s: |E| %.3g, "
                 "det F %.3g..%.3g, at particle %d, first at %g, %g, %g): "
-                "%.2f s%s, kinetic energy %.4g -> %.4g J, mass %.1e, momentum "
-                "%.1e, %d failed particles\n",
+                "%.2f s (cells %.2f, kernels %.2f, constraints %.2f, loop "
+                "%.2f, state %.2f, stable step %.2f)%s, step %.4g s of a "
+                "stable %.4g s, kinetic energy %.4g -> %.4g J, mass "
+                "%.1e, momentum %.1e, %d failed particles\n",
                 isatty(STDERR_FILENO) ? "\r" : "", r->reference->update_count,
                 e->step, e->time, gsn_reference_reason_name(reason),
                 report.strain, report.volume[0], report.volume[1],
                 report.particle, x[0], x[1], x[2], report.seconds,
+                report.seconds_cells, report.seconds_kernels,
+                report.seconds_constraints, report.seconds_loop,
+                report.seconds_state, report.seconds_stable,
                 report.remeshed ? " (body's tetrahedra made again)" : "",
-                report.kinetic_before, report.kinetic_after, report.mass_error,
-                report.momentum_error, e->dead_count);
+                report.time_step, report.stable_step, report.kinetic_before,
+                report.kinetic_after, report.mass_error, report.momentum_error,
+                e->dead_count);
         fflush(stderr);
     }
     return GSN_OK;
@@ -826,7 +874,7 @@ static int run_loop(struct run *r)
         if (stop_signal)
             return stop_for_signal(r);
         struct gsn_explicit *e = r->reference->loop;
-        apply_loads(r, (double)(e->step + 1) * e->dt);
+        apply_loads(r, gsn_explicit_time_of(e, e->step + 1));
         GSN_CALL(gsn_explicit_step(e));
         GSN_CALL(check_energy(r));
         /* before the outputs of the step, so that its checkpoint holds the

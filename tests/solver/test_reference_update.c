@@ -108,11 +108,11 @@ static void test_uniform_update(void)
         gsn_error_print(stderr);
     TEST_INT(rc, GSN_OK);
     e = b.reference->loop;
-    printf("update: %.3g s (cells %.3g s), %d sweeps for the velocity, mass "
-           "%.2g, momentum %.2g, body quality %.3g\n",
-           report.seconds, report.seconds_cells,
-           report.interpolation_iterations, report.mass_error,
-           report.momentum_error, report.body_quality);
+    printf(
+        "update: %.3g s (cells %.3g s), %d iterations for the velocity, mass "
+        "%.2g, momentum %.2g, body quality %.3g\n",
+        report.seconds, report.seconds_cells, report.interpolation_iterations,
+        report.mass_error, report.momentum_error, report.body_quality);
     /* the particles at F1 X (round-off of the RK sums, 1 m body) */
     double F1[9], worst_x = 0.0, worst_F = 0.0, worst_v = 0.0;
     for (int a = 0; a < 9; ++a)

@@ -178,6 +178,12 @@ struct gsn_dataset_info {
 #define GSN_CHECKPOINT_ATTR_REFERENCE_STEP "reference_step"
 #define GSN_CHECKPOINT_ATTR_UPDATE_ENERGY "reference_update_energy"
 #define GSN_CHECKPOINT_ATTR_REMESHES "body_remeshes"
+/* The clock: the run's first time step, the present one (an update may
+ * change it) and the time and step where it began (s, s, s, -) */
+#define GSN_CHECKPOINT_ATTR_TIME_STEP_FIRST "time_step_first"
+#define GSN_CHECKPOINT_ATTR_TIME_STEP "time_step"
+#define GSN_CHECKPOINT_ATTR_TIME_BASE "time_base"
+#define GSN_CHECKPOINT_ATTR_STEP_BASE "step_base"
 
 #define GSN_DATASET_ENUM(id, path, type, columns, units, description) id,
 enum gsn_model_dataset {
