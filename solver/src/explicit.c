@@ -1023,8 +1023,11 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
 }
 
 /* The step's distortion over the blocks (explicit.h) and the count of
- * failed points. */
-static void gather_distortion(struct gsn_explicit *e)
+ * failed points; more than FAILED_SHARE of them is an unstable run or a
+ * body that has broken up, and stops it (the points newly failed in this
+ * step are named by the first). */
+#define FAILED_SHARE 0.01
+static int gather_distortion(struct gsn_explicit *e)
 {
     e->distortion_strain = 0.0;
     e->distortion_jacobian_min = INFINITY;
@@ -1040,11 +1043,28 @@ static void gather_distortion(struct gsn_explicit *e)
         e->distortion_jacobian_max = fmax(e->distortion_jacobian_max, d[2]);
     }
     if (!e->allow_failure)
-        return;
-    int dead = 0;
-    for (int p = 0; p < e->main_point_count; ++p)
+        return GSN_OK;
+    int dead = 0, first_new = -1, before = e->dead_count;
+    for (int p = 0; p < e->main_point_count; ++p) {
         dead += e->point_dead[p];
+        if (e->point_dead[p] == 1 && first_new < 0 && dead > before)
+            first_new = p;
+    }
     e->dead_count = dead;
+    int limit = (int)fmax(10.0, FAILED_SHARE * e->main_point_count);
+    if (dead <= limit)
+        return GSN_OK;
+    int p = first_new >= 0 ? first_new : 0;
+    const double *x = &e->quadrature->point_position[3 * (size_t)p];
+    return gsn_error_raise(
+        GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
+        "step %ld, t = %.6g s: det F <= 0 at %d integration points, more "
+        "than %.0f%% of them (%d in this step, the first at particle %d, "
+        "reference position %g, %g, %g): the run is unstable (reduce "
+        "time.step) or the body has broken up",
+        e->step + 1, gsn_explicit_time_of(e, e->step + 1), dead,
+        100.0 * FAILED_SHARE, dead - before,
+        p < e->main_point_count ? e->point_owner[p] : p, x[0], x[1], x[2]);
 }
 
 int gsn_explicit_update_stress(struct gsn_explicit *e)
@@ -1070,7 +1090,7 @@ int gsn_explicit_update_stress(struct gsn_explicit *e)
         GSN_CHECK(0, GSN_ERR_NUMERICAL, "step %ld: the stress update failed",
                   e->step + 1);
     }
-    gather_distortion(e);
+    GSN_CALL(gather_distortion(e));
     return GSN_OK;
 }
 
