@@ -165,8 +165,13 @@ static void print_survey(const struct gsn_pre_survey *s)
         printf("; more than %d: pre and run need --force",
                GSN_DEFAULT_MAX_PARTICLES);
     printf("\n# free surfaces (no entry under boundary:, traction-free): "
-           "%s\n",
+           "%s",
            s->free_surface_count ? s->free_surfaces : "none");
+    if (s->unnamed_surface_count)
+        printf("; and %d surface%s in no physical group",
+               s->unnamed_surface_count,
+               s->unnamed_surface_count > 1 ? "s" : "");
+    printf("\n");
     if (!s->surfaces_meshed)
         printf("# surfaces not meshed at the spacing (too many particles)\n");
 }

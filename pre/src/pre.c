@@ -973,6 +973,32 @@ done:
     return rc;
 }
 
+/* The surfaces on the body's boundary (of one volume) in no physical
+ * group: free, and out of reach of boundary: (check says so). */
+static int pre_unnamed_surfaces(double *count)
+{
+    int *surfaces = NULL, ierr = 0;
+    size_t n = 0;
+    *count = 0;
+    gmshModelGetEntities(&surfaces, &n, 2, &ierr);
+    for (size_t e = 0; ierr == 0 && e + 1 < n; e += 2) {
+        int *up = NULL, *down = NULL, *groups = NULL;
+        size_t up_n = 0, down_n = 0, group_n = 0;
+        gmshModelGetAdjacencies(2, surfaces[e + 1], &up, &up_n, &down, &down_n,
+                                &ierr);
+        if (ierr == 0)
+            gmshModelGetPhysicalGroupsForEntity(2, surfaces[e + 1], &groups,
+                                                &group_n, &ierr);
+        *count += up_n == 1 && group_n == 0;
+        gmshFree(up);
+        gmshFree(down);
+        gmshFree(groups);
+    }
+    gmshFree(surfaces);
+    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot list the unnamed surfaces");
+    return GSN_OK;
+}
+
 /* check's child: the survey, the physical surfaces' names, and the
  * surfaces meshed at the spacing. */
 static int pre_check_child(struct pre_child *child, void *arg)
@@ -983,8 +1009,9 @@ static int pre_check_child(struct pre_child *child, void *arg)
     GSN_CALL(gmsh_session_begin_case(&session, c));
     struct survey s;
     GSN_CALL(pre_survey(child, c, pre_reproducible(job->options), &s));
-    /* estimate, at least, volume, surfaces meshed */
-    double numbers[4] = {s.estimate, s.at_least, s.volume, 0};
+    /* estimate, at least, volume, surfaces meshed, unnamed surfaces */
+    double numbers[5] = {s.estimate, s.at_least, s.volume, 0, 0};
+    GSN_CALL(pre_unnamed_surfaces(&numbers[4]));
     /* the surfaces at the spacing cost as little as the estimate says */
     if (job->mesh_surfaces && s.estimate <= GSN_DEFAULT_MAX_PARTICLES) {
         int ierr = 0;
@@ -1033,7 +1060,7 @@ int gsn_pre_check_geometry(const struct gsn_case *c, int mesh_surfaces,
     int rc = GSN_OK;
     if (r.died)
         GSN_CALL_GOTO(pre_child_died(c, &r), rc, done);
-    GSN_CHECK_GOTO(r.array_count == 2 && r.size[0] == sizeof(double[4]) &&
+    GSN_CHECK_GOTO(r.array_count == 2 && r.size[0] == sizeof(double[5]) &&
                        r.size[1] % GSN_NAME_SIZE == 0,
                    rc, GSN_ERR_INTERNAL, done,
                    "the checking process sent %d arrays", r.array_count);
@@ -1045,6 +1072,7 @@ int gsn_pre_check_geometry(const struct gsn_case *c, int mesh_surfaces,
         survey->estimate_at_least = numbers[1] != 0;
         survey->volume = numbers[2];
         survey->surfaces_meshed = numbers[3] != 0;
+        survey->unnamed_surface_count = (int)numbers[4];
         int count = (int)(r.size[1] / GSN_NAME_SIZE);
         for (int g = 0; g < count; ++g) {
             if (gsn_case_find_boundary(c, names[g]) >= 0)

@@ -111,8 +111,28 @@ int pre_refine_check(const struct gsn_case *c)
     return GSN_OK;
 }
 
+/* Makes gmsh mesh only the given surface entities (and their curves and
+ * points), or, with none, everything again. */
+static int only_visible(const int *surfaces, size_t count)
+{
+    int *all = NULL, ierr = 0;
+    size_t all_count = 0;
+    gmshModelGetEntities(&all, &all_count, -1, &ierr);
+    if (ierr == 0)
+        gmshModelSetVisibility(all, all_count, count == 0, 0, &ierr);
+    gmshFree(all);
+    for (size_t e = 0; ierr == 0 && e < count; ++e) {
+        int dim_tag[2] = {2, surfaces[e]};
+        gmshModelSetVisibility(dim_tag, 2, 1, 1, &ierr);
+    }
+    if (ierr == 0)
+        gmshOptionSetNumber("Mesh.MeshOnlyVisible", count > 0, &ierr);
+    GMSH_OK(ierr, "cannot set which surfaces gmsh meshes");
+    return GSN_OK;
+}
+
 /* Point entities sampling a physical surface at spacing: the nodes of a
- * triangle mesh of its entities (made at that size and cleared again),
+ * triangle mesh of its entities alone (made at that size and cleared again),
  * added to the model as free points, which no tetrahedron uses. gmsh 4.8's
  * Distance field ignores SurfacesList on surfaces of the built-in kernel
  * (a 0.7 m refinement near Slope I's footing came out at the background
@@ -130,6 +150,9 @@ static int surface_sample(const struct gsn_case *c,
     GMSH_OK(ierr, "cannot list the entities of surface %s", f->surface);
     *points = NULL;
     *count = 0;
+    /* only this surface (and its curves): the others at its spacing could
+     * hold far more nodes than the whole volume mesh */
+    GSN_CALL(only_visible(entities, entity_count));
     gmshOptionSetNumber("Mesh.MeshSizeMax", f->spacing, &ierr);
     gmshModelMeshGenerate(2, &ierr);
     GSN_CHECK_GOTO(ierr == 0, rc, GSN_ERR_INPUT, done,
@@ -167,6 +190,10 @@ done:
     gmshFree(entities);
     ierr = 0;
     gmshModelMeshClear(NULL, 0, &ierr);
+    if (rc == GSN_OK)
+        rc = only_visible(NULL, 0);
+    else
+        (void)only_visible(NULL, 0);
     gmshOptionSetNumber("Mesh.MeshSizeMax", c->particle_spacing, &ierr);
     if (rc == GSN_OK && ierr != 0)
         rc =

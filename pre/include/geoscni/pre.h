@@ -35,12 +35,13 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
 
 /* What check learns of a case's geometry (gsn_pre_check_geometry). */
 struct gsn_pre_survey {
-    double particle_estimate; /* the particles pre would make (about) */
-    int estimate_at_least;    /* far over the limit: a lower bound */
-    double volume;            /* m^3, of a coarse mesh */
-    int surfaces_meshed;      /* the surfaces were meshed at the spacing */
-    int free_surface_count;   /* physical surfaces without a boundary entry */
-    char free_surfaces[1024]; /* their names, ", "-separated */
+    double particle_estimate;  /* the particles pre would make (about) */
+    int estimate_at_least;     /* far over the limit: a lower bound */
+    double volume;             /* m^3, of a coarse mesh */
+    int surfaces_meshed;       /* the surfaces were meshed at the spacing */
+    int free_surface_count;    /* physical surfaces without a boundary entry */
+    char free_surfaces[1024];  /* their names, ", "-separated */
+    int unnamed_surface_count; /* boundary surfaces in no physical group */
 };
 
 /* What pre checks of the case against its geometry, without the volume
