@@ -102,6 +102,10 @@ static void child_exit_trap(void)
 static void child_main(int fd, pre_child_work work, void *arg)
 {
     struct pre_child child = {fd};
+    /* Ctrl-C ends the child whatever the parent's handler (the solver's
+     * sets a flag): the parent reports the interrupt */
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
     atexit(child_exit_trap);
     pre_child_terminate_install();
     omp_set_num_threads(1);
@@ -150,6 +154,9 @@ static void messages_collect(FILE *capture, struct pre_child_result *r)
     if (!r->messages[0] && r->signal)
         snprintf(r->messages, sizeof r->messages, "signal %d, %s", r->signal,
                  strsignal(r->signal));
+    else if (!r->messages[0] && r->exit_status != PRE_CHILD_EXIT_CALLED)
+        snprintf(r->messages, sizeof r->messages, "it ended with status %d",
+                 r->exit_status);
 }
 
 void pre_child_result_free(struct pre_child_result *result)

@@ -389,6 +389,12 @@ static void list_add(char *list, size_t size, int tag)
     snprintf(list + used, size - used, "%s%d", used ? ", " : "", tag);
 }
 
+static int compare_ints(const void *pa, const void *pb)
+{
+    int a = *(const int *)pa, b = *(const int *)pb;
+    return (a > b) - (a < b);
+}
+
 struct edge {
     int a, b, surface;
 };
@@ -414,10 +420,14 @@ static int check_closed(const struct gsn_case *c, const struct coarse_mesh *m,
         malloc(sizeof *edges * 3 * ((size_t)m->triangle_count + 1));
     GSN_CHECK_GOTO(edges != NULL, rc, GSN_ERR_MEMORY, done,
                    "cannot allocate the edges of volume %d", volume);
+    /* the volume's surface tags, sorted, in place of its (dim, tag) pairs */
+    size_t n = count / 2;
+    for (size_t s = 0; s < n; ++s)
+        surfaces[s] = abs(surfaces[2 * s + 1]);
+    qsort(surfaces, n, sizeof(int), compare_ints);
     for (int t = 0; t < m->triangle_count; ++t) {
-        int bounds = 0;
-        for (size_t s = 0; s + 1 < count && !bounds; s += 2)
-            bounds = abs(surfaces[s + 1]) == m->triangle_surface[t];
+        int bounds = bsearch(&m->triangle_surface[t], surfaces, n, sizeof(int),
+                             compare_ints) != NULL;
         for (int k = 0; bounds && k < 3; ++k) {
             int a = m->triangles[3 * t + k],
                 b = m->triangles[3 * t + (k + 1) % 3];

@@ -1,9 +1,11 @@
-/* pre: the driver (issue 3). Loads the geometry with the gmsh C API, meshes
- * it with tetrahedra at particles.spacing (HXT on one gmsh thread; gmsh's
- * Delaunay where the same input must give the same particles), takes the
- * mesh nodes as particles, builds the
- * nodal domains (domains.c), tags boundary particles and facets with the
- * physical surfaces, checks the model and writes model.h5 atomically.
+/* pre: the driver (issue 3). In a child process (child.h, issue 21): loads
+ * the geometry with the gmsh C API, checks it (geometry.c), estimates the
+ * particle count (estimate.c), meshes it with tetrahedra at
+ * particles.spacing (HXT on one gmsh thread; gmsh's Delaunay where the same
+ * input must give the same particles) and sends the mesh back. Then takes
+ * the mesh nodes as particles, builds the nodal domains (domains.c), tags
+ * boundary particles and facets with the physical surfaces, checks the
+ * model and writes model.h5 atomically.
  * gmsh 4.8 pitfalls: TOOLCHAIN.md, "gmsh 4.8 C API". */
 #include "geoscni/pre.h"
 #include "child.h"
@@ -736,7 +738,7 @@ static int pre_mesh_child(struct pre_child *child, void *arg)
 {
     const struct pre_job *job = arg;
     const struct gsn_case *c = job->c;
-    struct gmsh_session session;
+    struct gmsh_session session; /* never ended: the child exits */
     GSN_CALL(gmsh_session_begin_case(&session, c));
     struct mesh m;
     memset(&m, 0, sizeof m);
@@ -1005,7 +1007,7 @@ static int pre_check_child(struct pre_child *child, void *arg)
 {
     const struct pre_job *job = arg;
     const struct gsn_case *c = job->c;
-    struct gmsh_session session;
+    struct gmsh_session session; /* never ended: the child exits */
     GSN_CALL(gmsh_session_begin_case(&session, c));
     struct survey s;
     GSN_CALL(pre_survey(child, c, pre_reproducible(job->options), &s));
@@ -1053,7 +1055,7 @@ static int pre_check_child(struct pre_child *child, void *arg)
 int gsn_pre_check_geometry(const struct gsn_case *c, int mesh_surfaces,
                            struct gsn_pre_survey *survey)
 {
-    struct gsn_pre_options options = {0, 0, 1, 0, 0};
+    struct gsn_pre_options options = {.quiet = 1};
     struct pre_job job = {c, &options, mesh_surfaces};
     struct pre_child_result r;
     GSN_CALL(pre_child_run(pre_check_child, &job, &r));
