@@ -159,23 +159,54 @@ static void print_readable(const char *text, FILE *out)
     }
 }
 
+/* What check found in the geometry, as YAML comments after the case. */
+static void print_survey(const struct gsn_pre_survey *s)
+{
+    double count = s->particle_estimate; /* two digits are what it knows */
+    if (count >= 100 && count < 1e6) {
+        double unit = pow(10.0, floor(log10(count)) - 1.0);
+        count = round(count / unit) * unit;
+    }
+    printf("# particles: %s %.*g (estimated from a coarse mesh of the %.4g "
+           "m^3 body)",
+           s->estimate_at_least ? "at least" : "about", count < 1e6 ? 6 : 3,
+           count, s->volume);
+    if (s->particle_estimate > GSN_DEFAULT_MAX_PARTICLES)
+        printf("; more than %d: pre and run need --force",
+               GSN_DEFAULT_MAX_PARTICLES);
+    printf("\n# free surfaces (no entry under boundary:, traction-free): "
+           "%s",
+           s->free_surface_count ? s->free_surfaces : "none");
+    if (s->unnamed_surface_count)
+        printf("; and %d surface%s in no physical group",
+               s->unnamed_surface_count,
+               s->unnamed_surface_count > 1 ? "s" : "");
+    printf("\n");
+    if (!s->surfaces_meshed)
+        printf("# surfaces not meshed at the spacing (too many particles)\n");
+}
+
 /* Checks every case file (each error printed, the first one returned) and
- * prints the resolved parameters of the good ones. */
+ * prints the resolved parameters of the good ones, with the particle
+ * estimate and the surfaces left free. */
 static int command_check(const struct arguments *a)
 {
     int first_failure = GSN_OK;
     for (int i = 0; i < a->case_count; ++i) {
         struct gsn_case c;
+        struct gsn_pre_survey survey;
         char *text = NULL;
         int rc = gsn_case_load(a->cases[i], &c);
         if (rc == GSN_OK)
             gsn_case_warn_implausible(&c, stderr);
         if (rc == GSN_OK)
-            rc = gsn_pre_check_geometry(&c);
+            rc = gsn_pre_check_geometry(&c, 1, &survey);
         if (rc == GSN_OK && !a->quiet)
             rc = gsn_case_to_yaml_string(&c, &text);
-        if (text)
+        if (text) {
             print_readable(text, stdout);
+            print_survey(&survey);
+        }
         free(text);
         if (rc != GSN_OK && a->case_count > 1) {
             fprintf(stderr, "geoscni check: ");
@@ -385,7 +416,7 @@ static int command_run(const struct arguments *a)
     for (int i = 0; i < a->case_count; ++i) {
         GSN_CALL(gsn_case_load(a->cases[i], &cases[i]));
         gsn_case_warn_implausible(&cases[i], stderr);
-        GSN_CALL(gsn_pre_check_geometry(&cases[i]));
+        GSN_CALL(gsn_pre_check_geometry(&cases[i], 0, NULL));
         const char *outdir =
             outdir_for(a, a->cases[i], outdirs[i], sizeof outdirs[i]);
         if (outdir != outdirs[i])
@@ -463,8 +494,9 @@ static const struct command commands[] = {
      OPTION_OUTPUT | OPTION_RESTART | OPTION_FORCE | OPTION_NO_PICTURES |
          OPTION_RERUN | OPTION_THREADS},
     {"check", "geoscni check CASE.yaml [CASE2.yaml ...]",
-     "check case files (also against their geometries, without meshing) "
-     "and print their resolved parameters",
+     "check case files (also against their geometries, meshing their "
+     "surfaces) and print their resolved parameters, the particle estimate "
+     "and the surfaces left free",
      "", command_check, 1, MAX_CASES, "file", 0},
 };
 enum { COMMAND_COUNT = sizeof commands / sizeof commands[0] };

@@ -430,6 +430,7 @@ static int read_particles(struct reader *r, const yaml_node_t *root,
     GSN_CALL(check_keys(r, node, keys, "particles"));
     GSN_CALL(read_positive(r, node, "particles", "spacing", "m", 1,
                            &c->particle_spacing));
+    c->particle_spacing_line = node_line(mapping_find(r, node, "spacing"));
     yaml_node_t *points = mapping_find(r, node, "facet_points");
     if (points) {
         GSN_CALL(parse_integer(r, points, "particles.facet_points",

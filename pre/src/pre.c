@@ -1,11 +1,16 @@
-/* pre: the driver (issue 3). Loads the geometry with the gmsh C API, meshes
- * it with tetrahedra at particles.spacing (HXT on one gmsh thread; gmsh's
- * Delaunay where the same input must give the same particles), takes the
- * mesh nodes as particles, builds the
- * nodal domains (domains.c), tags boundary particles and facets with the
- * physical surfaces, checks the model and writes model.h5 atomically.
+/* pre: the driver (issue 3). In a child process (child.h, issue 21): loads
+ * the geometry with the gmsh C API, checks it (geometry.c), estimates the
+ * particle count (estimate.c), meshes it with tetrahedra at
+ * particles.spacing (HXT on one gmsh thread; gmsh's Delaunay where the same
+ * input must give the same particles) and sends the mesh back. Then takes
+ * the mesh nodes as particles, builds the nodal domains (domains.c), tags
+ * boundary particles and facets with the physical surfaces, checks the
+ * model and writes model.h5 atomically.
  * gmsh 4.8 pitfalls: TOOLCHAIN.md, "gmsh 4.8 C API". */
 #include "geoscni/pre.h"
+#include "child.h"
+#include "estimate.h"
+#include "geometry.h"
 #include "geoscni/cells.h"
 #include "geoscni/error.h"
 #include "geoscni/files.h"
@@ -25,20 +30,8 @@ enum {
     GMSH_TRIANGLE = 2,    /* 3-node triangle */
     GMSH_TETRAHEDRON = 4, /* 4-node tetrahedron */
     GMSH_ALGORITHM_DELAUNAY = 1,
-    GMSH_ALGORITHM_HXT = 10,
-    COARSE_DIVISIONS = 8 /* size of the volume-estimate mesh: diagonal / 8 */
+    GMSH_ALGORITHM_HXT = 10
 };
-
-/* The last message gmsh logged as an error, or a placeholder. */
-static void gmsh_last_error(char *out, size_t size)
-{
-    int ierr = 0;
-    char *message = NULL;
-    gmshLoggerGetLastError(&message, &ierr);
-    snprintf(out, size, "%s",
-             ierr == 0 && message && message[0] ? message : "no message");
-    gmshFree(message);
-}
 
 /* Raises code with the message and gmsh's last error appended. */
 static int gmsh_raise(int code, const char *file, int line, const char *func,
@@ -56,7 +49,7 @@ static int gmsh_raise(int code, const char *file, int line, const char *func,
     va_start(args, format);
     vsnprintf(what, sizeof what, format, args);
     va_end(args);
-    gmsh_last_error(gmsh, sizeof gmsh);
+    geometry_gmsh_last_error(gmsh, sizeof gmsh);
     return gsn_error_raise(code, file, line, func, "%s (gmsh: %s)", what, gmsh);
 }
 
@@ -219,7 +212,9 @@ static void gmsh_session_end(struct gmsh_session *s)
 static int gmsh_open_geometry(const struct gsn_case *c)
 {
     int ierr = 0;
-    gmshOptionSetNumber("General.Terminal", 0, &ierr);
+    /* errors only, on stderr: in pre's child process (child.h) that is a
+     * file the parent reads should gmsh die */
+    gmshOptionSetNumber("General.Terminal", 1, &ierr);
     gmshOptionSetNumber("General.Verbosity", 1, &ierr);
     /* gmsh asks on stdin before meshing a geometry whose point sizes (h,
      * the spacing) are tiny against its size; without a popup it takes the
@@ -243,6 +238,11 @@ static int gmsh_open_geometry(const struct gsn_case *c)
     gmshModelGetEntities(&dim_tags, &count, 3, &ierr);
     gmshFree(dim_tags);
     GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot list the volumes");
+    int abort_line = geometry_statement_line(c->geometry, "Abort");
+    GSN_CHECK(count > 0 || abort_line == 0, GSN_ERR_INPUT,
+              "%s:%d: gmsh stops reading the geometry at 'Abort;', before "
+              "it defines a volume to fill with particles; delete it",
+              c->geometry, abort_line);
     GSN_CHECK(count > 0, GSN_ERR_INPUT,
               "%s:%d: the geometry %s has no volume to fill with particles",
               c->path, c->geometry_line, c->geometry);
@@ -259,52 +259,6 @@ static int gmsh_set_size(double min, double max)
     gmshOptionSetNumber("Mesh.RecombineAll", 0, &ierr);
     gmshOptionSetNumber("Mesh.Recombine3DAll", 0, &ierr);
     GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot set the mesh size");
-    return GSN_OK;
-}
-
-/* Sum of |volume| of the tetrahedra of the current mesh. */
-static int gmsh_mesh_volume(double *volume)
-{
-    int ierr = 0;
-    size_t *elements = NULL, element_count = 0, *nodes = NULL, node_count = 0;
-    size_t *tags = NULL, tag_count = 0;
-    double *coord = NULL, *parametric = NULL;
-    size_t coord_n = 0, parametric_n = 0;
-    gmshModelMeshGetElementsByType(GMSH_TETRAHEDRON, &elements, &element_count,
-                                   &nodes, &node_count, -1, 0, 1, &ierr);
-    if (ierr == 0)
-        gmshModelMeshGetNodes(&tags, &tag_count, &coord, &coord_n, &parametric,
-                              &parametric_n, -1, -1, 0, 0, &ierr);
-    double sum = 0.0;
-    size_t limit = 0;
-    for (size_t i = 0; ierr == 0 && i < tag_count; ++i)
-        limit = tags[i] + 1 > limit ? tags[i] + 1 : limit;
-    size_t *row = ierr == 0 ? malloc(sizeof(size_t) * (limit + 1)) : NULL;
-    if (row) {
-        for (size_t i = 0; i < tag_count; ++i)
-            row[tags[i]] = i;
-        for (size_t t = 0; t + 3 < node_count; t += 4) {
-            const double *x0 = &coord[3 * row[nodes[t]]];
-            double e[3][3];
-            for (int k = 0; k < 3; ++k)
-                for (int j = 0; j < 3; ++j)
-                    e[k][j] = coord[3 * row[nodes[t + k + 1]] + j] - x0[j];
-            sum += fabs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-                        e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                        e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
-                   6.0;
-        }
-    }
-    free(row);
-    gmshFree(elements);
-    gmshFree(nodes);
-    gmshFree(tags);
-    gmshFree(coord);
-    gmshFree(parametric);
-    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot read the mesh");
-    GSN_CHECK(row != NULL, GSN_ERR_MEMORY, "cannot allocate %zu node tags",
-              limit);
-    *volume = sum;
     return GSN_OK;
 }
 
@@ -330,28 +284,6 @@ static int gmsh_generate(const struct gsn_case *c, int reproducible)
                "%s:%d: gmsh cannot mesh the volume of %s with tetrahedra "
                "(spacing %g m)",
                c->path, c->geometry_line, c->geometry, c->particle_spacing);
-    return GSN_OK;
-}
-
-/* The body's volume from a coarse mesh (size diagonal / 8), so that the
- * particle count can be estimated before the real mesh is made. */
-static int estimate_volume(const struct gsn_case *c, double *volume)
-{
-    int ierr = 0;
-    double box[6];
-    gmshModelGetBoundingBox(-1, -1, &box[0], &box[1], &box[2], &box[3], &box[4],
-                            &box[5], &ierr);
-    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot get the bounding box");
-    double diagonal = sqrt((box[3] - box[0]) * (box[3] - box[0]) +
-                           (box[4] - box[1]) * (box[4] - box[1]) +
-                           (box[5] - box[2]) * (box[5] - box[2]));
-    /* the minimum overrides the sizes of the geometry's points */
-    GSN_CALL(gmsh_set_size(diagonal / COARSE_DIVISIONS,
-                           diagonal / COARSE_DIVISIONS));
-    GSN_CALL(gmsh_generate(c, 1));
-    GSN_CALL(gmsh_mesh_volume(volume));
-    gmshModelMeshClear(NULL, 0, &ierr);
-    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot clear the mesh");
     return GSN_OK;
 }
 
@@ -637,28 +569,99 @@ static int pre_check_surfaces(const struct gsn_case *c)
     return GSN_OK;
 }
 
-static int pre_mesh(const struct gsn_case *c,
+static int pre_reproducible(const struct gsn_pre_options *options)
+{
+    const char *variable = getenv("GEOSCNI_REPRODUCIBLE");
+    return (options && options->reproducible) ||
+           (variable && variable[0] && strcmp(variable, "0") != 0);
+}
+
+/* What the child learns before the real mesh: the geometry read and
+ * checked, the particle estimate from a coarse mesh (issue 21, point 6:
+ * before any meshing at the case's spacings). */
+/* What pre_survey learns. */
+struct survey {
+    double estimate; /* particles */
+    int at_least;    /* the estimate stopped early: a lower bound */
+    double volume;   /* m^3, of the coarse mesh */
+};
+
+static int pre_survey(struct pre_child *child, const struct gsn_case *c,
+                      int reproducible, struct survey *s)
+{
+    pre_child_stage(child, "reading it");
+    GSN_CALL(gmsh_open_geometry(c));
+    pre_child_stage(child, "checking it");
+    GSN_CALL(geometry_check(c));
+    GSN_CALL(pre_check_surfaces(c));
+    pre_child_stage(child, "meshing it coarsely to estimate the particle "
+                           "count");
+    struct coarse_mesh coarse;
+    GSN_CALL(geometry_coarse_mesh(c, &coarse));
+    s->volume = 0.0;
+    for (int t = 0; t < coarse.tetrahedron_count; ++t) {
+        const int *v = &coarse.tetrahedra[4 * t];
+        double e[3][3];
+        for (int k = 0; k < 3; ++k)
+            for (int j = 0; j < 3; ++j)
+                e[k][j] = coarse.position[3 * v[k + 1] + j] -
+                          coarse.position[3 * v[0] + j];
+        s->volume += fabs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                          e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                          e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+                     6.0;
+    }
+    struct estimate_coefficients k;
+    estimate_coefficients_for(reproducible, &k);
+    int rc =
+        pre_refine_estimate(c, &coarse, &k, 10.0 * GSN_DEFAULT_MAX_PARTICLES,
+                            &s->estimate, &s->at_least);
+    coarse_mesh_free(&coarse);
+    GSN_CALL(rc);
+    int ierr = 0;
+    gmshModelMeshClear(NULL, 0, &ierr);
+    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot clear the coarse mesh");
+    return GSN_OK;
+}
+
+/* The particle limit, before any meshing at the case's spacings. */
+static int pre_check_count(const struct gsn_case *c, const struct survey *s,
+                           int force)
+{
+    char where[GSN_PATH_SIZE + 16];
+    snprintf(where, sizeof where, "%s", c->path);
+    if (c->particle_spacing_line > 0)
+        snprintf(where, sizeof where, "%s:%d", c->path,
+                 c->particle_spacing_line);
+    GSN_CHECK(force || s->estimate <= GSN_DEFAULT_MAX_PARTICLES, GSN_ERR_INPUT,
+              "%s: particles.spacing (%g m)%s in a body of %.4g m^3 give%s "
+              "%s %.3g particles, more than %d; use a larger spacing%s, or "
+              "--force",
+              where, c->particle_spacing,
+              c->refinement_count ? " and particles.refine" : "", s->volume,
+              c->refinement_count ? "" : "s",
+              s->at_least ? "at least" : "about", s->estimate,
+              GSN_DEFAULT_MAX_PARTICLES,
+              c->refinement_count ? " or larger refine spacings" : "");
+    return GSN_OK;
+}
+
+static int pre_mesh(struct pre_child *child, const struct gsn_case *c,
                     const struct gsn_pre_options *options, struct mesh *m,
                     double *estimate)
 {
-    GSN_CALL(gmsh_open_geometry(c));
-    GSN_CALL(pre_check_surfaces(c));
-    double volume = 0.0;
-    GSN_CALL(estimate_volume(c, &volume));
+    int reproducible = pre_reproducible(options);
     double h = c->particle_spacing;
-    *estimate = volume / (h * h * h);
-    GSN_CALL(pre_refine_fields(c, estimate));
-    GSN_CHECK(options->force || *estimate <= GSN_DEFAULT_MAX_PARTICLES,
-              GSN_ERR_INPUT,
-              "%s: spacing %g m in a body of %.4g m^3 gives about %.3g "
-              "particles, more than %d; use a larger particles.spacing or "
-              "--force",
-              c->path, h, volume, *estimate, GSN_DEFAULT_MAX_PARTICLES);
+    struct survey survey;
+    GSN_CALL(pre_survey(child, c, reproducible, &survey));
+    *estimate = survey.estimate;
+    GSN_CALL(pre_check_count(c, &survey, options->force));
+    pre_child_stage(child, "sampling the refinement surfaces");
+    GSN_CALL(pre_refine_fields(c));
     GSN_CALL(gmsh_set_size(0.0, h));
-    const char *variable = getenv("GEOSCNI_REPRODUCIBLE");
-    int reproducible = options->reproducible ||
-                       (variable && variable[0] && strcmp(variable, "0") != 0);
+    pre_child_stage(child, "meshing it with tetrahedra at spacing %g m", h);
     GSN_CALL(gmsh_generate(c, reproducible));
+    pre_child_stage(child, "reading its mesh");
     int *index = NULL;
     size_t limit = 0;
     int rc = GSN_OK;
@@ -676,6 +679,135 @@ done:
     return rc;
 }
 
+struct pre_job {
+    const struct gsn_case *c;
+    const struct gsn_pre_options *options;
+    int mesh_surfaces; /* check: mesh the surfaces at the spacing */
+};
+
+/* The counts of a mesh as sent: particles, tetrahedra, surfaces, surface
+ * entries of the particles. */
+enum { MESH_ARRAYS = 9 };
+
+/* pre's child: the mesh, sent array by array (mesh_receive). */
+static int pre_mesh_child(struct pre_child *child, void *arg)
+{
+    const struct pre_job *job = arg;
+    const struct gsn_case *c = job->c;
+    struct gmsh_session session; /* never ended: the child exits */
+    GSN_CALL(gmsh_session_begin_case(&session, c));
+    struct mesh m;
+    memset(&m, 0, sizeof m);
+    double numbers[1] = {0}; /* the estimate */
+    int rc = pre_mesh(child, c, job->options, &m, &numbers[0]);
+    int n = m.node_count, nt = m.tetrahedron_count, ns = m.surface_count;
+    int counts[4] = {n, nt, ns,
+                     rc == GSN_OK ? m.particle_surface_offset[n] : 0};
+    const void *data[MESH_ARRAYS] = {counts,
+                                     numbers,
+                                     m.position,
+                                     m.tetrahedra,
+                                     m.face_label,
+                                     m.surface_name,
+                                     m.surface_tag,
+                                     m.particle_surface_offset,
+                                     m.particle_surface};
+    size_t size[MESH_ARRAYS] = {sizeof counts,
+                                sizeof numbers,
+                                sizeof(double) * 3 * (size_t)n,
+                                sizeof(int) * 4 * (size_t)nt,
+                                sizeof(int) * 4 * (size_t)nt,
+                                sizeof *m.surface_name * (size_t)ns,
+                                sizeof(int) * (size_t)ns,
+                                sizeof(int) * ((size_t)n + 1),
+                                sizeof(int) * (size_t)counts[3]};
+    for (int i = 0; rc == GSN_OK && i < MESH_ARRAYS; ++i)
+        rc = pre_child_send(child, data[i], size[i]);
+    mesh_free(&m);
+    return rc;
+}
+
+/* The mesh from the arrays pre_mesh_child sent; takes them. */
+static int mesh_receive(struct pre_child_result *r, struct mesh *m,
+                        double *estimate)
+{
+    GSN_CHECK(r->array_count == MESH_ARRAYS && r->size[0] == sizeof(int[4]) &&
+                  r->size[1] == sizeof(double[1]),
+              GSN_ERR_INTERNAL, "the meshing process sent %d arrays",
+              r->array_count);
+    const int *counts = r->array[0];
+    const double *numbers = r->array[1];
+    size_t n = (size_t)counts[0], nt = (size_t)counts[1],
+           ns = (size_t)counts[2], entries = (size_t)counts[3];
+    size_t expected[MESH_ARRAYS] = {r->size[0],
+                                    r->size[1],
+                                    sizeof(double) * 3 * n,
+                                    sizeof(int) * 4 * nt,
+                                    sizeof(int) * 4 * nt,
+                                    sizeof *m->surface_name * ns,
+                                    sizeof(int) * ns,
+                                    sizeof(int) * (n + 1),
+                                    sizeof(int) * entries};
+    for (int i = 0; i < MESH_ARRAYS; ++i)
+        GSN_CHECK(r->size[i] == expected[i], GSN_ERR_INTERNAL,
+                  "array %d from the meshing process has %zu bytes, not %zu", i,
+                  r->size[i], expected[i]);
+    m->node_count = counts[0];
+    m->tetrahedron_count = counts[1];
+    m->surface_count = counts[2];
+    *estimate = numbers[0];
+    void **take[MESH_ARRAYS] = {NULL,
+                                NULL,
+                                (void **)&m->position,
+                                (void **)&m->tetrahedra,
+                                (void **)&m->face_label,
+                                (void **)&m->surface_name,
+                                (void **)&m->surface_tag,
+                                (void **)&m->particle_surface_offset,
+                                (void **)&m->particle_surface};
+    for (int i = 2; i < MESH_ARRAYS; ++i) {
+        *take[i] = r->array[i];
+        r->array[i] = NULL;
+    }
+    return GSN_OK;
+}
+
+/* The error of a gmsh child that died: gmsh's own message and the file. */
+static int pre_child_died(const struct gsn_case *c,
+                          const struct pre_child_result *r)
+{
+    if (r->exited && r->exit_status == PRE_CHILD_EXIT_CALLED) {
+        int line = geometry_statement_line(c->geometry, "Exit");
+        GSN_CHECK(line == 0, GSN_ERR_INPUT,
+                  "%s:%d: 'Exit;' ends gmsh, and the program with it, while "
+                  "it reads the geometry; delete it (geoscni meshes the "
+                  "geometry itself)",
+                  c->geometry, line);
+        GSN_CHECK(0, GSN_ERR_INPUT,
+                  "%s: gmsh ended the program while %s%s%s (does the "
+                  "geometry, or a file it includes, end with 'Exit;'?)",
+                  c->geometry, r->stage[0] ? r->stage : "reading it",
+                  r->messages[0] ? ": " : "", r->messages);
+    }
+    GSN_CHECK(0, GSN_ERR_INPUT, "%s: gmsh failed while %s: %s", c->geometry,
+              r->stage[0] ? r->stage : "reading it",
+              r->messages[0] ? r->messages : "no message");
+    return GSN_OK;
+}
+
+/* Meshes the case in a child process (child.h). */
+static int pre_mesh_isolated(const struct gsn_case *c,
+                             const struct gsn_pre_options *options,
+                             struct mesh *m, double *estimate)
+{
+    struct pre_job job = {c, options, 0};
+    struct pre_child_result r;
+    GSN_CALL(pre_child_run(pre_mesh_child, &job, &r));
+    int rc = r.died ? pre_child_died(c, &r) : mesh_receive(&r, m, estimate);
+    pre_child_result_free(&r);
+    GSN_CALL(rc);
+    return GSN_OK;
+}
 int gsn_pre_run(const struct gsn_case *c, const char *outdir,
                 const struct gsn_pre_options *options)
 {
@@ -690,20 +822,13 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
 
     double t0 = omp_get_wtime();
     int rc = GSN_OK;
-    struct gmsh_session session;
-    GSN_CALL(gmsh_session_begin_case(&session, c));
     struct mesh mesh;
     memset(&mesh, 0, sizeof mesh);
     struct gsn_model bare, m;
     memset(&bare, 0, sizeof bare);
     memset(&m, 0, sizeof m);
     double estimate = 0.0;
-    /* HXT takes OpenMP's thread count, whatever gmsh's options say */
-    omp_set_num_threads(1);
-    rc = pre_mesh(c, options, &mesh, &estimate);
-    gmsh_session_end(&session);
-    if (rc != GSN_OK)
-        goto done;
+    GSN_CALL_GOTO(pre_mesh_isolated(c, options, &mesh, &estimate), rc, done);
     double t_mesh = omp_get_wtime() - t0;
 
     /* The particles, their surfaces and the body's tetrahedra, in Morton
@@ -727,6 +852,18 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
     for (int f = 0; f < 4 * mesh.tetrahedron_count; ++f)
         bare.tetrahedron_face[f] =
             gsn_cells_face_from_label(mesh.face_label[f]);
+    /* every tetrahedron positively oriented (the body's convention) */
+    for (int t = 0; t < mesh.tetrahedron_count; ++t) {
+        int *v = &bare.tetrahedra[4 * t], *f = &bare.tetrahedron_face[4 * t];
+        if (gsn_body_tetrahedron_volume(bare.position, v) < 0.0) {
+            int swap = v[2];
+            v[2] = v[3];
+            v[3] = swap;
+            swap = f[2];
+            f[2] = f[3];
+            f[3] = swap;
+        }
+    }
     GSN_CALL_GOTO(gsn_model_sort_spatially(&bare), rc, done);
     struct gsn_cells_options cells = {c->facet_points, options->threads,
                                       options->tetrahedra_only};
@@ -761,15 +898,119 @@ done:
     return rc;
 }
 
-int gsn_pre_check_geometry(const struct gsn_case *c)
+/* The surfaces on the body's boundary (of one volume) in no physical
+ * group: free, and out of reach of boundary: (check says so). */
+static int pre_unnamed_surfaces(double *count)
 {
-    struct gmsh_session session;
+    int *surfaces = NULL, ierr = 0;
+    size_t n = 0;
+    *count = 0;
+    gmshModelGetEntities(&surfaces, &n, 2, &ierr);
+    for (size_t e = 0; ierr == 0 && e + 1 < n; e += 2) {
+        int *up = NULL, *down = NULL, *groups = NULL;
+        size_t up_n = 0, down_n = 0, group_n = 0;
+        gmshModelGetAdjacencies(2, surfaces[e + 1], &up, &up_n, &down, &down_n,
+                                &ierr);
+        if (ierr == 0)
+            gmshModelGetPhysicalGroupsForEntity(2, surfaces[e + 1], &groups,
+                                                &group_n, &ierr);
+        *count += up_n == 1 && group_n == 0;
+        gmshFree(up);
+        gmshFree(down);
+        gmshFree(groups);
+    }
+    gmshFree(surfaces);
+    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot list the unnamed surfaces");
+    return GSN_OK;
+}
+
+/* check's child: the survey, the physical surfaces' names, and the
+ * surfaces meshed at the spacing. */
+static int pre_check_child(struct pre_child *child, void *arg)
+{
+    const struct pre_job *job = arg;
+    const struct gsn_case *c = job->c;
+    struct gmsh_session session; /* never ended: the child exits */
     GSN_CALL(gmsh_session_begin_case(&session, c));
+    struct survey s;
+    GSN_CALL(pre_survey(child, c, pre_reproducible(job->options), &s));
+    /* estimate, at least, volume, surfaces meshed, unnamed surfaces */
+    double numbers[5] = {s.estimate, s.at_least, s.volume, 0, 0};
+    GSN_CALL(pre_unnamed_surfaces(&numbers[4]));
+    /* the surfaces at the spacing cost as little as the estimate says */
+    if (job->mesh_surfaces && s.estimate <= GSN_DEFAULT_MAX_PARTICLES) {
+        int ierr = 0;
+        pre_child_stage(child, "meshing its surfaces at spacing %g m",
+                        c->particle_spacing);
+        GSN_CALL(gmsh_set_size(0.0, c->particle_spacing));
+        gmshModelMeshGenerate(2, &ierr);
+        GMSH_CHECK(ierr, GSN_ERR_INPUT,
+                   "%s: gmsh cannot mesh the surfaces of the geometry at "
+                   "spacing %g m",
+                   c->geometry, c->particle_spacing);
+        numbers[3] = 1;
+    }
+    GSN_CALL(pre_child_send(child, numbers, sizeof numbers));
+    int *groups = NULL, ierr = 0;
+    size_t group_count = 0;
+    gmshModelGetPhysicalGroups(&groups, &group_count, 2, &ierr);
+    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot list the physical surfaces");
+    char(*names)[GSN_NAME_SIZE] = calloc(group_count / 2 + 1, sizeof *names);
+    for (size_t g = 0; names && ierr == 0 && g + 1 < group_count; g += 2) {
+        char *name = NULL;
+        gmshModelGetPhysicalName(2, groups[g + 1], &name, &ierr);
+        if (name && name[0])
+            snprintf(names[g / 2], sizeof names[g / 2], "%s", name);
+        else
+            snprintf(names[g / 2], sizeof names[g / 2], "%d", groups[g + 1]);
+        gmshFree(name);
+    }
+    gmshFree(groups);
+    int rc = names ? GSN_OK : GSN_ERR_MEMORY;
+    if (rc == GSN_OK)
+        rc = pre_child_send(child, names, sizeof *names * (group_count / 2));
+    free(names);
+    GSN_CHECK(rc == GSN_OK, rc, "cannot send the physical surfaces' names");
+    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot read the physical names");
+    return GSN_OK;
+}
+
+int gsn_pre_check_geometry(const struct gsn_case *c, int mesh_surfaces,
+                           struct gsn_pre_survey *survey)
+{
+    struct gsn_pre_options options = {.quiet = 1};
+    struct pre_job job = {c, &options, mesh_surfaces};
+    struct pre_child_result r;
+    GSN_CALL(pre_child_run(pre_check_child, &job, &r));
     int rc = GSN_OK;
-    GSN_CALL_GOTO(gmsh_open_geometry(c), rc, done);
-    GSN_CALL_GOTO(pre_check_surfaces(c), rc, done);
+    if (r.died)
+        GSN_CALL_GOTO(pre_child_died(c, &r), rc, done);
+    GSN_CHECK_GOTO(r.array_count == 2 && r.size[0] == sizeof(double[5]) &&
+                       r.size[1] % GSN_NAME_SIZE == 0,
+                   rc, GSN_ERR_INTERNAL, done,
+                   "the checking process sent %d arrays", r.array_count);
+    if (survey) {
+        const double *numbers = r.array[0];
+        const char(*names)[GSN_NAME_SIZE] = r.array[1];
+        memset(survey, 0, sizeof *survey);
+        survey->particle_estimate = numbers[0];
+        survey->estimate_at_least = numbers[1] != 0;
+        survey->volume = numbers[2];
+        survey->surfaces_meshed = numbers[3] != 0;
+        survey->unnamed_surface_count = (int)numbers[4];
+        int count = (int)(r.size[1] / GSN_NAME_SIZE);
+        for (int g = 0; g < count; ++g) {
+            if (gsn_case_find_boundary(c, names[g]) >= 0)
+                continue;
+            size_t used = strlen(survey->free_surfaces);
+            snprintf(survey->free_surfaces + used,
+                     sizeof survey->free_surfaces - used, "%s%s",
+                     survey->free_surface_count ? ", " : "", names[g]);
+            survey->free_surface_count++;
+        }
+    }
 done:
-    gmsh_session_end(&session);
+    pre_child_result_free(&r);
     return rc;
 }
 

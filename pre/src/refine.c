@@ -7,6 +7,7 @@
  * Thickness; Distance PointsList; Threshold InField, SizeMin, SizeMax,
  * DistMin, DistMax; Min FieldsList. */
 #include "refine.h"
+#include "estimate.h"
 #include "geoscni/error.h"
 #include "geoscni/pre.h"
 
@@ -110,8 +111,28 @@ int pre_refine_check(const struct gsn_case *c)
     return GSN_OK;
 }
 
+/* Makes gmsh mesh only the given surface entities (and their curves and
+ * points), or, with none, everything again. */
+static int only_visible(const int *surfaces, size_t count)
+{
+    int *all = NULL, ierr = 0;
+    size_t all_count = 0;
+    gmshModelGetEntities(&all, &all_count, -1, &ierr);
+    if (ierr == 0)
+        gmshModelSetVisibility(all, all_count, count == 0, 0, &ierr);
+    gmshFree(all);
+    for (size_t e = 0; ierr == 0 && e < count; ++e) {
+        int dim_tag[2] = {2, surfaces[e]};
+        gmshModelSetVisibility(dim_tag, 2, 1, 1, &ierr);
+    }
+    if (ierr == 0)
+        gmshOptionSetNumber("Mesh.MeshOnlyVisible", count > 0, &ierr);
+    GMSH_OK(ierr, "cannot set which surfaces gmsh meshes");
+    return GSN_OK;
+}
+
 /* Point entities sampling a physical surface at spacing: the nodes of a
- * triangle mesh of its entities (made at that size and cleared again),
+ * triangle mesh of its entities alone (made at that size and cleared again),
  * added to the model as free points, which no tetrahedron uses. gmsh 4.8's
  * Distance field ignores SurfacesList on surfaces of the built-in kernel
  * (a 0.7 m refinement near Slope I's footing came out at the background
@@ -129,6 +150,9 @@ static int surface_sample(const struct gsn_case *c,
     GMSH_OK(ierr, "cannot list the entities of surface %s", f->surface);
     *points = NULL;
     *count = 0;
+    /* only this surface (and its curves): the others at its spacing could
+     * hold far more nodes than the whole volume mesh */
+    GSN_CALL(only_visible(entities, entity_count));
     gmshOptionSetNumber("Mesh.MeshSizeMax", f->spacing, &ierr);
     gmshModelMeshGenerate(2, &ierr);
     GSN_CHECK_GOTO(ierr == 0, rc, GSN_ERR_INPUT, done,
@@ -166,6 +190,10 @@ done:
     gmshFree(entities);
     ierr = 0;
     gmshModelMeshClear(NULL, 0, &ierr);
+    if (rc == GSN_OK)
+        rc = only_visible(NULL, 0);
+    else
+        (void)only_visible(NULL, 0);
     gmshOptionSetNumber("Mesh.MeshSizeMax", c->particle_spacing, &ierr);
     if (rc == GSN_OK && ierr != 0)
         rc =
@@ -182,14 +210,11 @@ done:
  * the surface, growing linearly to particles.spacing over f->distance
  * beyond. */
 static int surface_field(const struct gsn_case *c,
-                         const struct gsn_refinement *f, int *field,
-                         double *area)
+                         const struct gsn_refinement *f, int *field)
 {
     double *sample = NULL;
     size_t count = 0;
     GSN_CALL(surface_sample(c, f, &sample, &count));
-    /* a node of a triangle mesh of size s stands for sqrt(3)/2 s^2 */
-    *area = (double)count * 0.5 * sqrt(3.0) * f->spacing * f->spacing;
     double *list = malloc(sizeof(double) * (count + 1));
     int ierr = 0;
     for (size_t i = 0; list && i < count && ierr == 0; ++i)
@@ -235,35 +260,20 @@ static int box_field(const struct gsn_case *c, const struct gsn_refinement *f,
     return GSN_OK;
 }
 
-int pre_refine_fields(const struct gsn_case *c, double *estimate)
+int pre_refine_fields(const struct gsn_case *c)
 {
     if (c->refinement_count == 0)
         return GSN_OK;
     double fields[GSN_MAX_REFINEMENTS];
     int ierr = 0;
-    double h = c->particle_spacing;
     for (int i = 0; i < c->refinement_count; ++i) {
         const struct gsn_refinement *f = &c->refinements[i];
         int field = -1;
-        double s = f->spacing, extra = 0.0; /* particles the field adds */
-        if (f->kind == GSN_REFINE_BOX) {
+        if (f->kind == GSN_REFINE_BOX)
             GSN_CALL(box_field(c, f, &field));
-            double region = 1.0; /* the box and its transition, m^3 */
-            for (int k = 0; k < 3; ++k)
-                region *= f->box[k + 3] - f->box[k] + 2.0 * f->distance;
-            extra = region * (1.0 / (s * s * s) - 1.0 / (h * h * h));
-        } else {
-            double area = 0.0;
-            GSN_CALL(surface_field(c, f, &field, &area));
-            /* one side of the surface, the size growing linearly from s to
-             * h over the distance D: int_0^D dd / size(dd)^3 */
-            double d = f->distance, w = f->width;
-            extra = area * (w * (1.0 / (s * s * s) - 1.0 / (h * h * h)) +
-                            d / (h - s) * (0.5 / (s * s) - 0.5 / (h * h)) -
-                            d / (h * h * h));
-        }
+        else
+            GSN_CALL(surface_field(c, f, &field));
         fields[i] = field;
-        *estimate += extra;
     }
     int minimum = gmshModelMeshFieldAdd("Min", -1, &ierr);
     gmshModelMeshFieldSetNumbers(minimum, "FieldsList", fields,
@@ -271,6 +281,59 @@ int pre_refine_fields(const struct gsn_case *c, double *estimate)
     gmshModelMeshFieldSetAsBackgroundMesh(minimum, &ierr);
     GMSH_OK(ierr, "cannot set the refinement fields as the background mesh");
     return GSN_OK;
+}
+
+int pre_refine_estimate(const struct gsn_case *c, const struct coarse_mesh *m,
+                        const struct estimate_coefficients *k, double cap,
+                        double *estimate, int *at_least)
+{
+    struct estimate_refinement r[GSN_MAX_REFINEMENTS];
+    int *triangles[GSN_MAX_REFINEMENTS] = {NULL}, rc = GSN_OK;
+    memset(r, 0, sizeof r);
+    for (int i = 0; i < c->refinement_count; ++i) {
+        const struct gsn_refinement *f = &c->refinements[i];
+        r[i].kind = f->kind;
+        memcpy(r[i].box, f->box, sizeof r[i].box);
+        r[i].spacing = f->spacing;
+        r[i].width = f->width;
+        r[i].distance = f->distance;
+        if (f->kind != GSN_REFINE_SURFACE)
+            continue;
+        /* the coarse triangles of the surface's entities */
+        int tag = -1, ierr = 0, *entities = NULL;
+        size_t entity_count = 0;
+        GSN_CALL_GOTO(physical_surface_tag(f->surface, &tag), rc, done);
+        gmshModelGetEntitiesForPhysicalGroup(2, tag, &entities, &entity_count,
+                                             &ierr);
+        triangles[i] =
+            malloc(sizeof(int) * 3 * ((size_t)m->triangle_count + 1));
+        int count = 0;
+        for (int t = 0; ierr == 0 && triangles[i] && t < m->triangle_count; ++t)
+            for (size_t e = 0; e < entity_count; ++e)
+                if (entities[e] == m->triangle_surface[t]) {
+                    memcpy(&triangles[i][3 * count++], &m->triangles[3 * t],
+                           sizeof(int[3]));
+                    break;
+                }
+        gmshFree(entities);
+        GSN_CHECK_GOTO(ierr == 0, rc, GSN_ERR_LIBRARY, done,
+                       "cannot list the entities of surface %s", f->surface);
+        GSN_CHECK_GOTO(triangles[i] != NULL, rc, GSN_ERR_MEMORY, done,
+                       "out of memory");
+        r[i].triangles = triangles[i];
+        r[i].triangle_count = count;
+    }
+    struct estimate_body body = {
+        m->node_count,     m->position,  m->tetrahedron_count, m->tetrahedra,
+        m->triangle_count, m->triangles, m->segment_count,     m->segments};
+    GSN_CALL_GOTO(estimate_particles(&body, c->particle_spacing, r,
+                                     c->refinement_count, k, cap, estimate,
+                                     at_least),
+                  rc, done);
+done:
+    for (int i = 0; i < c->refinement_count; ++i)
+        free(triangles[i]);
+    return rc;
 }
 
 static int compare_doubles(const void *a, const void *b)

@@ -34,7 +34,7 @@ expect() {
 
 expect no_volume "has no volume" \
     pre cases/no_volume.yaml -o "$work/out_no_volume"
-expect unmeshable "cannot mesh" \
+expect unmeshable "the surfaces do not close a volume" \
     pre cases/unmeshable.yaml -o "$work/out_unmeshable"
 expect missing_surface "boundary 'footing' names no physical surface" \
     pre cases/missing_surface.yaml -o "$work/out_missing_surface"

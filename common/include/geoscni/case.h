@@ -101,6 +101,7 @@ struct gsn_case {
     char path[GSN_PATH_SIZE];     /* the case file as given */
     char geometry[GSN_PATH_SIZE]; /* resolved against the case file folder */
     int geometry_line;
+    int particle_spacing_line;
     double particle_spacing; /* m */
     int facet_points;        /* quadrature points per Voronoi facet */
     double kernel_support;   /* normalized support a/h */

@@ -34,11 +34,30 @@ struct gsn_pre_options {
 int gsn_pre_run(const struct gsn_case *c, const char *outdir,
                 const struct gsn_pre_options *options);
 
-/* What pre checks of the case against its geometry before meshing, without
- * meshing (geoscni check): gmsh reads the geometry, which has a volume;
- * every boundary and surface refinement names a physical surface of it
- * (with a did-you-mean); symmetry surfaces are axis-aligned planes. */
-int gsn_pre_check_geometry(const struct gsn_case *c);
+/* What check learns of a case's geometry (gsn_pre_check_geometry). */
+struct gsn_pre_survey {
+    double particle_estimate;  /* the particles pre would make (about) */
+    int estimate_at_least;     /* far over the limit: a lower bound */
+    double volume;             /* m^3, of a coarse mesh */
+    int surfaces_meshed;       /* the surfaces were meshed at the spacing */
+    int free_surface_count;    /* physical surfaces without a boundary entry */
+    char free_surfaces[1024];  /* their names, ", "-separated */
+    int unnamed_surface_count; /* boundary surfaces in no physical group */
+};
+
+/* What pre checks of the case against its geometry, without the volume
+ * mesh, all in a child process (a gmsh abort or exit is an error here):
+ * gmsh reads the geometry, which has a volume; it lies near the origin,
+ * has no zero-length curve, and is no thinner than the spacing; every
+ * boundary and surface refinement names a physical surface of it (with a
+ * did-you-mean); symmetry surfaces are axis-aligned planes; a coarse mesh
+ * shows that every volume is closed and that volumes do not touch without
+ * sharing faces, and gives the particle estimate. With mesh_surfaces, the
+ * surfaces are then meshed at particles.spacing (unless the estimate is
+ * over the particle limit), which catches most of what would stop gmsh in
+ * pre. survey may be NULL. */
+int gsn_pre_check_geometry(const struct gsn_case *c, int mesh_surfaces,
+                           struct gsn_pre_survey *survey);
 
 /* The version of the gmsh library loaded at run time, e.g. "4.8.4". */
 int gsn_pre_gmsh_version(char *out, size_t size);
