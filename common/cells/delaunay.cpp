@@ -26,8 +26,9 @@ using DataStructure =
     CGAL::Triangulation_data_structure_3<VertexBase, CellBase>;
 using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, DataStructure>;
 
-int neighbours_build(const double *points, int n, int **offset_out,
-                     int **index_out)
+// The Delaunay triangulation of the n points, each vertex knowing its
+// index; false if CGAL merged duplicates.
+bool triangulate(const double *points, int n, Delaunay &triangulation)
 {
     std::vector<std::pair<Kernel::Point_3, int>> input;
     input.reserve(static_cast<size_t>(n));
@@ -35,8 +36,15 @@ int neighbours_build(const double *points, int n, int **offset_out,
         input.emplace_back(Kernel::Point_3(points[3 * i], points[3 * i + 1],
                                            points[3 * i + 2]),
                            i);
-    Delaunay triangulation(input.begin(), input.end());
-    if (static_cast<int>(triangulation.number_of_vertices()) != n)
+    triangulation.insert(input.begin(), input.end());
+    return static_cast<int>(triangulation.number_of_vertices()) == n;
+}
+
+int neighbours_build(const double *points, int n, int **offset_out,
+                     int **index_out)
+{
+    Delaunay triangulation;
+    if (!triangulate(points, n, triangulation))
         return GSN_DELAUNAY_DUPLICATES;
 
     std::vector<std::pair<int, int>> edges;
@@ -74,14 +82,8 @@ int neighbours_build(const double *points, int n, int **offset_out,
 int tetrahedra_build(const double *points, int n, int *count_out,
                      int **tetrahedra_out, int **neighbour_out)
 {
-    std::vector<std::pair<Kernel::Point_3, int>> input;
-    input.reserve(static_cast<size_t>(n));
-    for (int i = 0; i < n; ++i)
-        input.emplace_back(Kernel::Point_3(points[3 * i], points[3 * i + 1],
-                                           points[3 * i + 2]),
-                           i);
-    Delaunay triangulation(input.begin(), input.end());
-    if (static_cast<int>(triangulation.number_of_vertices()) != n)
+    Delaunay triangulation;
+    if (!triangulate(points, n, triangulation))
         return GSN_DELAUNAY_DUPLICATES;
     if (triangulation.dimension() < 3)
         return GSN_DELAUNAY_FLAT;

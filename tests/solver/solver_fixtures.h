@@ -12,8 +12,10 @@
 #include "geoscni/model.h"
 #include "geoscni/pre.h"
 #include "geoscni/solver.h"
+#include "geoscni/tensor.h"
 #include "material.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -182,6 +184,18 @@ static inline int fixture_solver_create(const struct gsn_case *c,
                : GSN_ERR_MEMORY;
     free(cells);
     return rc;
+}
+
+/* R - I for a rotation by theta about the unit axis a, without the
+ * cancellation of forming R and subtracting I: sin t K + 2 sin^2(t/2) K^2. */
+static inline void fixture_rotation_minus_identity(const double a[3],
+                                                   double theta, double out[9])
+{
+    double K[9] = {0, -a[2], a[1], a[2], 0, -a[0], -a[1], a[0], 0}, K2[9];
+    gsn_matrix_multiply(K, K, K2);
+    double s = sin(theta), h = 2.0 * sin(0.5 * theta) * sin(0.5 * theta);
+    for (int i = 0; i < 9; ++i)
+        out[i] = s * K[i] + h * K2[i];
 }
 
 /* The step's increment is a linear field: previous_displacement = d, then

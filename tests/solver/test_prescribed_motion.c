@@ -29,18 +29,6 @@ static const char *method_name(int gauss_points)
     return gauss_points > 0 ? "Gauss points" : "nodal points";
 }
 
-/* R - I for a rotation by theta about the unit axis a, without the
- * cancellation of forming R and subtracting I: sin t K + 2 sin^2(t/2) K^2. */
-static void rotation_minus_identity(const double a[3], double theta,
-                                    double out[9])
-{
-    double K[9] = {0, -a[2], a[1], a[2], 0, -a[0], -a[1], a[0], 0}, K2[9];
-    gsn_matrix_multiply(K, K, K2);
-    double s = sin(theta), h = 2.0 * sin(0.5 * theta) * sin(0.5 * theta);
-    for (int i = 0; i < 9; ++i)
-        out[i] = s * K[i] + h * K2[i];
-}
-
 static void test_rigid_rotation(int gauss_points)
 {
     struct gsn_case c;
@@ -71,7 +59,7 @@ static void test_rigid_rotation(int gauss_points)
     for (int k = 1; k <= steps; ++k) {
         double theta = 2.0 * M_PI * k / steps, A[9], R[9], S0[9], RS[9],
                expected[9];
-        rotation_minus_identity(axis, theta, A);
+        fixture_rotation_minus_identity(axis, theta, A);
         fixture_set_linear_field(e, A);
         TEST_INT(gsn_explicit_update_stress(e), GSN_OK);
         for (int i = 0; i < 9; ++i)

@@ -25,18 +25,6 @@ static const int COUNT[3] = {7, 7, 7};
 static const double LO[3] = {0, 0, 0}, HI[3] = {1, 1, 1};
 #define JITTER 0.2
 
-/* R - I for a rotation by theta about the unit axis a, without the
- * cancellation of forming R and subtracting I: sin t K + 2 sin^2(t/2) K^2. */
-static void rotation_minus_identity(const double a[3], double theta,
-                                    double out[9])
-{
-    double K[9] = {0, -a[2], a[1], a[2], 0, -a[0], -a[1], a[0], 0}, K2[9];
-    gsn_matrix_multiply(K, K, K2);
-    double s = sin(theta), h = 2.0 * sin(0.5 * theta) * sin(0.5 * theta);
-    for (int i = 0; i < 9; ++i)
-        out[i] = s * K[i] + h * K2[i];
-}
-
 /* The block of the case with its material and the reference at X_0. */
 struct block {
     struct gsn_case c;
@@ -251,10 +239,10 @@ static void test_rotation_with_updates(void)
     for (int k = 1; k <= steps; ++k) {
         double theta = 2.0 * M_PI * k / steps, A[9], R[9], S0[9], RS[9],
                expected[9], ES[6];
-        rotation_minus_identity(axis, theta - theta_reference, A);
+        fixture_rotation_minus_identity(axis, theta - theta_reference, A);
         fixture_set_linear_field(e, A);
         TEST_INT(gsn_explicit_update_stress(e), GSN_OK);
-        rotation_minus_identity(axis, theta, R);
+        fixture_rotation_minus_identity(axis, theta, R);
         for (int i = 0; i < 9; ++i)
             R[i] += i % 4 == 0 ? 1.0 : 0.0;
         gsn_voigt_to_matrix(sigma0, S0);
