@@ -673,10 +673,14 @@ static void point_fail(struct gsn_explicit *e, int p)
     int S = e->blocks->subcells;
     e->point_dead[p] = 1;
     memset(&e->stress[6 * (size_t)p], 0, 6 * sizeof(double));
-    for (int s = 0; s < S; ++s)
-        memset(&e->stress[6 * ((size_t)e->main_point_count + (size_t)S * p +
-                               (size_t)s)],
-               0, 6 * sizeof(double));
+    /* its sub-cells are skipped from now on: no stress, and no energy
+     * increment left over from their last step (the internal energy sums
+     * every point's increment at every step) */
+    for (int s = 0; s < S; ++s) {
+        size_t q = (size_t)e->main_point_count + (size_t)S * p + (size_t)s;
+        memset(&e->stress[6 * q], 0, 6 * sizeof(double));
+        e->point_energy[q] = 0.0;
+    }
 }
 
 /* Nodal points [p0, p1) with their increments dH (9 each, from p0):

@@ -293,10 +293,75 @@ static void test_rotation_with_updates(void)
     block_destroy(&b);
 }
 
+/* A point that fails (its F turned inside out) carries no stress and does
+ * no work from then on, nor do its MSCNI sub-cells: a step with no
+ * increment after the failure adds exactly no internal energy (the
+ * sub-cells' energy of the failing step was added again at every step
+ * before the fix: the paper's Slope I gained 4e4 J/s after one failure). */
+static void test_failed_point_energy(void)
+{
+    struct block b;
+    memset(&b, 0, sizeof b);
+    TEST_INT(gsn_case_load("cases/block_paper.yaml", &b.c), GSN_OK);
+    b.c.stabilization = GSN_STABILIZATION_MSCNI;
+    TEST_INT(fixture_box(COUNT, LO, HI, JITTER, 1, &b.model), GSN_OK);
+    TEST_INT(
+        gsn_material_model_create(gsn_material_name_for_case(&b.c.material),
+                                  &b.c.material, &b.material),
+        GSN_OK);
+    TEST_INT(
+        gsn_reference_create(&b.model, &b.c, b.material, 1e-4, 0, &b.reference),
+        GSN_OK);
+    struct gsn_explicit *e = b.reference->loop;
+    TEST_TRUE(e->point_count > e->main_point_count && e->allow_failure);
+    /* the middle particle pushed through its neighbours */
+    int middle = 0;
+    double best = INFINITY;
+    for (int i = 0; i < e->particle_count; ++i) {
+        double d = 0.0;
+        for (int k = 0; k < 3; ++k)
+            d += (b.model.position[3 * i + k] - 0.5) *
+                 (b.model.position[3 * i + k] - 0.5);
+        if (d < best) {
+            best = d;
+            middle = i;
+        }
+    }
+    /* a step that strains the sub-cells (a field that is not linear),
+     * then the push that turns points inside out */
+    memset(e->previous_displacement, 0,
+           sizeof(double) * 3 * (size_t)e->particle_count);
+    for (int i = 0; i < e->particle_count; ++i)
+        e->displacement[3 * i] = 1e-3 * sin(9.0 * b.model.position[3 * i + 1]);
+    TEST_INT(gsn_explicit_update_stress(e), GSN_OK);
+    double strained = 0.0;
+    for (int p = e->main_point_count; p < e->point_count; ++p)
+        strained += fabs(e->point_energy[p]);
+    TEST_TRUE(strained > 0.0);
+    memcpy(e->previous_displacement, e->displacement,
+           sizeof(double) * 3 * (size_t)e->particle_count);
+    for (int k = 0; k < 3; ++k)
+        e->displacement[3 * middle + k] -= 1.0;
+    TEST_INT(gsn_explicit_update_stress(e), GSN_OK);
+    TEST_TRUE(e->dead_count >= 1);
+    /* a step with no increment */
+    memcpy(e->previous_displacement, e->displacement,
+           sizeof(double) * 3 * (size_t)e->particle_count);
+    TEST_INT(gsn_explicit_update_stress(e), GSN_OK);
+    double energy = 0.0;
+    for (int p = 0; p < e->point_count; ++p)
+        energy += fabs(e->point_energy[p]);
+    printf("%d failed points; energy of a step without increment: %g J\n",
+           e->dead_count, energy);
+    TEST_TRUE(energy == 0.0);
+    block_destroy(&b);
+}
+
 int main(void)
 {
     test_begin();
     test_uniform_update();
     test_rotation_with_updates();
+    test_failed_point_energy();
     return test_end("test_reference_update");
 }
