@@ -99,7 +99,7 @@ int gsn_pre_domains_box_ex(const double *points, int n, const double lo[3],
     memset(&body, 0, sizeof body);
     box_body(points, n, lo, hi, tolerance, &body);
     rc = gsn_cells_model_create(&r, entries, 6, body.tetrahedron_count, m);
-    if (rc == GSN_OK) {
+    if (rc == GSN_OK && body.tetrahedron_count > 0) {
         memcpy(m->tetrahedra, body.tetrahedra,
                sizeof(int) * 4 * (size_t)body.tetrahedron_count);
         memcpy(m->tetrahedron_face, body.face,
