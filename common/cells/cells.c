@@ -204,8 +204,6 @@ static void body_index_free(struct body_index *b)
     memset(b, 0, sizeof *b);
 }
 
-static const int tet_face[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-
 /* Unit normal of triangle v pointing away from particle opposite, and the
  * plane's offset n.x. */
 static void triangle_plane(const double *position, const int v[3], int opposite,
@@ -258,7 +256,8 @@ static int body_index_create(const struct gsn_cells_input *in, double spacing,
             if (body->face_label[4 * t + k] == POLY_LABEL_INTERNAL)
                 continue;
             for (int j = 0; j < 3; ++j) {
-                int v = body->tetrahedra[4 * t + tet_face[k][j]];
+                int v =
+                    body->tetrahedra[4 * t + gsn_cells_tetrahedron_face[k][j]];
                 b->triangle[3 * count + j] = v;
                 b->on_boundary[v] = 1;
             }

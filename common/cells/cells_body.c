@@ -17,10 +17,21 @@
 /* Tetrahedra of less than this share of the mean volume are flat. */
 #define GSN_BODY_FLAT 1e-10
 
-/* The face opposite vertex k of a positively oriented tetrahedron, its
- * vertices ordered so that their normal points out of the tetrahedron. */
-static const int outward_face[4][3] = {
+const int gsn_cells_tetrahedron_face[4][3] = {
     {1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+double gsn_cells_triangle_area(const double *a, const double *b,
+                               const double *c)
+{
+    double u[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+        u[k] = b[k] - a[k];
+        w[k] = c[k] - a[k];
+    }
+    double n0 = u[1] * w[2] - u[2] * w[1], n1 = u[2] * w[0] - u[0] * w[2],
+           n2 = u[0] * w[1] - u[1] * w[0];
+    return 0.5 * sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+}
 
 void gsn_body_free(struct gsn_body *b)
 {
@@ -194,7 +205,8 @@ static int boundary_create(const struct gsn_body *b, const double *x,
             continue;
         const int *v = &b->tetrahedra[4 * (f / 4)];
         for (int j = 0; j < 3; ++j)
-            s->vertex[3 * s->count + j] = v[outward_face[f % 4][j]];
+            s->vertex[3 * s->count + j] =
+                v[gsn_cells_tetrahedron_face[f % 4][j]];
         s->label[s->count++] = b->face[f];
     }
     double hi[3], area = 0.0;
@@ -207,19 +219,10 @@ static int boundary_create(const struct gsn_body *b, const double *x,
             s->lo[k] = fmin(s->lo[k], x[3 * i + k]);
             hi[k] = fmax(hi[k], x[3 * i + k]);
         }
-    for (int t = 0; t < s->count; ++t) {
-        const double *p = &x[3 * s->vertex[3 * t]];
-        const double *q = &x[3 * s->vertex[3 * t + 1]];
-        const double *r = &x[3 * s->vertex[3 * t + 2]];
-        double u[3], w[3];
-        for (int k = 0; k < 3; ++k) {
-            u[k] = q[k] - p[k];
-            w[k] = r[k] - p[k];
-        }
-        double n0 = u[1] * w[2] - u[2] * w[1], n1 = u[2] * w[0] - u[0] * w[2],
-               n2 = u[0] * w[1] - u[1] * w[0];
-        area += 0.5 * sqrt(n0 * n0 + n1 * n1 + n2 * n2);
-    }
+    for (int t = 0; t < s->count; ++t)
+        area += gsn_cells_triangle_area(&x[3 * s->vertex[3 * t]],
+                                        &x[3 * s->vertex[3 * t + 1]],
+                                        &x[3 * s->vertex[3 * t + 2]]);
     /* bins of about two triangles across, at most 1024 a direction */
     s->size = 2.0 * sqrt(2.0 * area / s->count) + 1e-300;
     for (int k = 0; k < 3; ++k)
@@ -448,7 +451,8 @@ int gsn_body_remesh(const struct gsn_body *old, const double *x,
         double c[3] = {0.0, 0.0, 0.0};
         for (int j = 0; j < 3; ++j)
             for (int k = 0; k < 3; ++k)
-                c[k] += x[3 * v[outward_face[f % 4][j]] + k] / 3.0;
+                c[k] +=
+                    x[3 * v[gsn_cells_tetrahedron_face[f % 4][j]] + k] / 3.0;
         out->face[f] = nearest_label(&s, c);
     }
 done:

@@ -10,9 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const int tetrahedron_face_vertex[4][3] = {
-    {1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-
 int gsn_cells_label_from_face(int face)
 {
     return face >= 0                         ? -1 - face
@@ -66,17 +63,9 @@ static void surface_areas(const struct gsn_body *body, int surface_count,
         if (s < 0)
             continue;
         const int *v = &body->tetrahedra[4 * (f / 4)];
-        const int *o = tetrahedron_face_vertex[f % 4];
-        const double *a = &x[3 * v[o[0]]], *b = &x[3 * v[o[1]]],
-                     *c = &x[3 * v[o[2]]];
-        double u[3], w[3];
-        for (int k = 0; k < 3; ++k) {
-            u[k] = b[k] - a[k];
-            w[k] = c[k] - a[k];
-        }
-        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2],
-                       u[0] * w[1] - u[1] * w[0]};
-        area[s] += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        const int *o = gsn_cells_tetrahedron_face[f % 4];
+        area[s] += gsn_cells_triangle_area(&x[3 * v[o[0]]], &x[3 * v[o[1]]],
+                                           &x[3 * v[o[2]]]);
     }
 }
 

@@ -31,8 +31,6 @@ static void box_body(const double *points, int n, const double lo[3],
                      const double hi[3], double tolerance,
                      struct gsn_body *body)
 {
-    static const int face_vertex[4][3] = {
-        {1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
     if (gsn_body_of_points(points, n, body) != GSN_OK) {
         gsn_error_clear();
         return;
@@ -48,8 +46,9 @@ static void box_body(const double *points, int n, const double lo[3],
         const int *v = &body->tetrahedra[4 * (f / 4)];
         int mask = 63;
         for (int j = 0; j < 3; ++j)
-            mask &= box_faces_touched(&points[3 * v[face_vertex[f % 4][j]]], lo,
-                                      hi, tolerance);
+            mask &= box_faces_touched(
+                &points[3 * v[gsn_cells_tetrahedron_face[f % 4][j]]], lo, hi,
+                tolerance);
         for (int s = 0; s < 6; ++s)
             if ((mask >> s) & 1) {
                 body->face[f] = s;

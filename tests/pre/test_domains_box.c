@@ -101,8 +101,6 @@ static void test_lattice(int facet_points)
      * (the body the solver follows through reference updates) */
     TEST_TRUE(m.tetrahedron_count > 0);
     double volume = 0.0, area[6] = {0, 0, 0, 0, 0, 0};
-    static const int face_vertex[4][3] = {
-        {1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
     for (int t = 0; t < m.tetrahedron_count; ++t) {
         volume += gsn_body_tetrahedron_volume(m.position, &m.tetrahedra[4 * t]);
         for (int k = 0; k < 4; ++k) {
@@ -110,21 +108,11 @@ static void test_lattice(int facet_points)
             TEST_TRUE(face >= GSN_MODEL_FACE_INTERNAL && face < 6);
             if (face < 0)
                 continue;
-            const double *a =
-                &m.position[3 * m.tetrahedra[4 * t + face_vertex[k][0]]];
-            const double *b =
-                &m.position[3 * m.tetrahedra[4 * t + face_vertex[k][1]]];
-            const double *c =
-                &m.position[3 * m.tetrahedra[4 * t + face_vertex[k][2]]];
-            double u[3], w[3];
-            for (int j = 0; j < 3; ++j) {
-                u[j] = b[j] - a[j];
-                w[j] = c[j] - a[j];
-            }
-            double n0 = u[1] * w[2] - u[2] * w[1],
-                   n1 = u[2] * w[0] - u[0] * w[2],
-                   n2 = u[0] * w[1] - u[1] * w[0];
-            area[face] += 0.5 * sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+            const int *o = gsn_cells_tetrahedron_face[k];
+            const int *v = &m.tetrahedra[4 * t];
+            area[face] += gsn_cells_triangle_area(&m.position[3 * v[o[0]]],
+                                                  &m.position[3 * v[o[1]]],
+                                                  &m.position[3 * v[o[2]]]);
         }
     }
     /* a sum of about 10^3 volumes, each rounded to 1e-16 */

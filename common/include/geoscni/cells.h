@@ -117,6 +117,14 @@ struct gsn_body {
     int *face;       /* x 4: the face opposite vertex k */
 };
 
+/* The face opposite vertex k of a positively oriented tetrahedron, its
+ * vertices ordered so that their normal points out of it. */
+extern const int gsn_cells_tetrahedron_face[4][3];
+
+/* Area of the triangle (a, b, c) (3 coordinates each), m^2. */
+double gsn_cells_triangle_area(const double *a, const double *b,
+                               const double *c);
+
 void gsn_body_free(struct gsn_body *b);
 int gsn_body_copy(const struct gsn_body *from, struct gsn_body *to);
 
