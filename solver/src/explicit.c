@@ -26,6 +26,8 @@ enum { BLOCK_POINTS = 128, BLOCK_POINTS_STABILIZED = 32 };
 /* Particles (or points) per piece of the step's loops and sums
  * (step_loop). */
 enum { SUM_PIECE = 1024 };
+/* Columns of a block's distortion (explicit.h, block_distortion). */
+enum { DISTORTION_COLUMNS = 6 };
 /* Points per batch of the material update. */
 enum { CHUNK = 128 };
 /* Doubles of per-thread work per batch: G, strain increment, old stress,
@@ -448,10 +450,11 @@ int gsn_explicit_create(const struct gsn_model *m,
                                               : BLOCK_POINTS,
                                           &e->blocks),
                   rc, fail);
-    GSN_CALL_GOTO(alloc_array((void **)&e->block_distortion,
-                              4 * (size_t)e->blocks->block_count,
-                              sizeof(double)),
-                  rc, fail);
+    GSN_CALL_GOTO(
+        alloc_array((void **)&e->block_distortion,
+                    DISTORTION_COLUMNS * (size_t)e->blocks->block_count,
+                    sizeof(double)),
+        rc, fail);
     GSN_CALL_GOTO(
         alloc_array((void **)&e->slot_force,
                     3 * (size_t)e->blocks->block_slot[e->blocks->block_count],
@@ -690,11 +693,12 @@ static void point_fail(struct gsn_explicit *e, int p)
  * share of the step (share, from p0) for its stabilization points. A
  * failed point (point_dead) takes no increment and has no stress; a point
  * that turns inside out fails when allow_failure is set, else the step
- * fails. distortion gets the block's largest |E| of F_{n+1}, its point and
- * the extremes of det F_{n+1} over the live points. */
+ * fails. distortion (DISTORTION_COLUMNS) gets the block's largest |E| of
+ * F_{n+1}, its point, the extremes of det F_{n+1} over the live points,
+ * the points that failed in this step and the first of them (-1). */
 static int main_chunk(struct gsn_explicit *e, int p0, int p1,
                       const double *dH_block, double *work, double *share,
-                      double distortion[4])
+                      double distortion[DISTORTION_COLUMNS])
 {
     const double *w = e->quadrature->point_weight;
     double *G = work, *deps = G + 9 * CHUNK, *old = deps + 6 * CHUNK;
@@ -702,7 +706,7 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
     double *old_plastic = Jmid + CHUNK;
     int failed = 0;
     double strain_max = 0.0, jacobian_min = INFINITY, jacobian_max = 0.0;
-    int strain_point = p0;
+    int strain_point = p0, newly_failed = 0, first_failed = -1;
     for (int p = p0; p < p1; ++p) {
         int b = p - p0;
         const double *H = &e->displacement_gradient[9 * p];
@@ -734,9 +738,11 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
             if (admissible)
                 gsn_matrix_multiply(dH, Fmid_inv, &G[9 * b]);
         }
-        if (!admissible && e->allow_failure && isfinite(J1))
+        if (!admissible && e->allow_failure && isfinite(J1)) {
             point_fail(e, p);
-        else if (!admissible) {
+            if (newly_failed++ == 0)
+                first_failed = p;
+        } else if (!admissible) {
             e->point_failed[p] = 1;
             failed = 1;
             continue;
@@ -746,13 +752,12 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
             Jmid[b] = 1.0;
         } else {
             double strain = green_strain_norm(F1);
-            double volume = J1;
             if (strain > strain_max) {
                 strain_max = strain;
                 strain_point = p;
             }
-            jacobian_min = fmin(jacobian_min, volume);
-            jacobian_max = fmax(jacobian_max, volume);
+            jacobian_min = fmin(jacobian_min, J1);
+            jacobian_max = fmax(jacobian_max, J1);
         }
         memcpy(&old[6 * b], &e->stress[6 * p], 6 * sizeof(double));
         if (e->plastic_offset >= 0)
@@ -763,6 +768,8 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
     distortion[1] = jacobian_min;
     distortion[2] = jacobian_max;
     distortion[3] = strain_point;
+    distortion[4] = newly_failed;
+    distortion[5] = first_failed;
     if (failed)
         return GSN_ERR_NUMERICAL;
     int rc =
@@ -812,6 +819,20 @@ static void elastic_piola(const double sigma[6], double w, double P[9])
         P[a] *= w;
 }
 
+/* The force of a stabilization point's stress sigma (weight w) on packed
+ * row r, scattered as P_s B_s into the slots, and -P_s B_L folded into its
+ * nodal point's P (point_blocks.h). */
+static void subcell_scatter(const struct gsn_point_blocks *b, int r,
+                            const double sigma[6], double w, double fold[9],
+                            double *f4)
+{
+    double P[9];
+    elastic_piola(sigma, w, P);
+    row_scatter(b, r, P, f4);
+    for (int a = 0; a < 9; ++a)
+        fold[a] -= P[a];
+}
+
 /* Stabilization point s of particle L (block k): the elastic stress rate of
  * its row B_s - B_L (Puso et al. 2008), which vanishes for every linear
  * displacement field, scaled by the elastic share of L's nodal point in
@@ -832,7 +853,7 @@ static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
     if (b->row_start[r] == b->row_start[r + 1])
         return; /* an empty sub-cell: weight 0, no entries */
     double w = q->point_weight[p];
-    double dH[9], deps[6], rate[6], sigma[6], mean[6], P[9];
+    double dH[9], deps[6], rate[6], sigma[6], mean[6];
     row_gradient(b, r, u4, dH);
     for (int a = 0; a < 9; ++a)
         dH[a] -= dH_L[a];
@@ -844,10 +865,7 @@ static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
         mean[a] = 0.5 * (e->stress[6 * p + a] + sigma[a]);
     memcpy(&e->stress[6 * p], sigma, sizeof sigma);
     e->point_energy[p] = voigt_contract(mean, deps) * w;
-    elastic_piola(sigma, w, P);
-    row_scatter(b, r, P, f4);
-    for (int a = 0; a < 9; ++a)
-        fold[a] -= P[a];
+    subcell_scatter(b, r, sigma, w, fold, f4);
 }
 
 /* Per-thread work of one block: u and forces (4 per slot), the main
@@ -912,7 +930,8 @@ static int block_step(struct gsn_explicit *e, int k)
         row_gradient(b, gsn_point_blocks_main_row(b, k, L), u4,
                      &dH[9 * (L - p0)]);
     if (main_chunk(e, p0, p1, dH, work, share,
-                   &e->block_distortion[4 * (size_t)k]) != GSN_OK)
+                   &e->block_distortion[DISTORTION_COLUMNS * (size_t)k]) !=
+        GSN_OK)
         return GSN_ERR_NUMERICAL;
     memcpy(fold, &e->piola[9 * (size_t)p0],
            sizeof(double) * 9 * (size_t)(p1 - p0));
@@ -954,16 +973,13 @@ static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
             int r = gsn_point_blocks_subcell_row(b, k, L, s);
             if (b->row_start[r] == b->row_start[r + 1])
                 continue; /* an empty sub-cell */
-            double Hs[9], P[9];
+            double Hs[9];
             row_gradient(b, r, u4, Hs);
             for (int a = 0; a < 9; ++a)
                 Hs[a] -= HL[a];
             gsn_matrix_sym_to_voigt(Hs, eps);
             elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
-            elastic_piola(sigma, w[p], P);
-            row_scatter(b, r, P, f4);
-            for (int a = 0; a < 9; ++a)
-                fold[9 * (L - p0) + a] -= P[a];
+            subcell_scatter(b, r, sigma, w[p], &fold[9 * (L - p0)], f4);
         }
     }
     for (int L = p0; L < p1; ++L)
@@ -1026,10 +1042,10 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
     return GSN_OK;
 }
 
-/* The step's distortion over the blocks (explicit.h) and the count of
- * failed points; more than FAILED_SHARE of them is an unstable run or a
- * body that has broken up, and stops it (the points newly failed in this
- * step are named by the first). */
+/* The step's distortion over the blocks (explicit.h) and the failed points
+ * counted from the blocks' new ones; more than FAILED_SHARE of them is an
+ * unstable run or a body that has broken up, and stops it, naming the
+ * first point of the step's failures. */
 #define FAILED_SHARE 0.01
 static int gather_distortion(struct gsn_explicit *e)
 {
@@ -1037,38 +1053,33 @@ static int gather_distortion(struct gsn_explicit *e)
     e->distortion_jacobian_min = INFINITY;
     e->distortion_jacobian_max = 0.0;
     e->distortion_point = 0;
+    int newly_failed = 0, first_failed = -1;
     for (int k = 0; k < e->blocks->block_count; ++k) {
-        const double *d = &e->block_distortion[4 * (size_t)k];
+        const double *d = &e->block_distortion[DISTORTION_COLUMNS * (size_t)k];
         if (d[0] > e->distortion_strain) {
             e->distortion_strain = d[0];
             e->distortion_point = (int)d[3];
         }
         e->distortion_jacobian_min = fmin(e->distortion_jacobian_min, d[1]);
         e->distortion_jacobian_max = fmax(e->distortion_jacobian_max, d[2]);
+        if (d[4] > 0.0 && newly_failed == 0)
+            first_failed = (int)d[5];
+        newly_failed += (int)d[4];
     }
-    if (!e->allow_failure)
-        return GSN_OK;
-    int dead = 0, first_new = -1, before = e->dead_count;
-    for (int p = 0; p < e->main_point_count; ++p) {
-        dead += e->point_dead[p];
-        if (e->point_dead[p] == 1 && first_new < 0 && dead > before)
-            first_new = p;
-    }
-    e->dead_count = dead;
+    e->dead_count += newly_failed;
     int limit = (int)fmax(10.0, FAILED_SHARE * e->main_point_count);
-    if (dead <= limit)
+    if (newly_failed == 0 || e->dead_count <= limit)
         return GSN_OK;
-    int p = first_new >= 0 ? first_new : 0;
-    const double *x = &e->quadrature->point_position[3 * (size_t)p];
+    const double *x = &e->quadrature->point_position[3 * (size_t)first_failed];
     return gsn_error_raise(
         GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
         "step %ld, t = %.6g s: det F <= 0 at %d integration points, more "
         "than %.0f%% of them (%d in this step, the first at particle %d, "
         "reference position %g, %g, %g): the run is unstable (reduce "
         "time.step) or the body has broken up",
-        e->step + 1, gsn_explicit_time_of(e, e->step + 1), dead,
-        100.0 * FAILED_SHARE, dead - before,
-        p < e->main_point_count ? e->point_owner[p] : p, x[0], x[1], x[2]);
+        e->step + 1, gsn_explicit_time_of(e, e->step + 1), e->dead_count,
+        100.0 * FAILED_SHARE, newly_failed, e->point_owner[first_failed], x[0],
+        x[1], x[2]);
 }
 
 int gsn_explicit_update_stress(struct gsn_explicit *e)
@@ -1451,11 +1462,8 @@ static void block_forces(struct gsn_explicit *e, int k)
             int r = gsn_point_blocks_subcell_row(b, k, L, s);
             if (b->row_start[r] == b->row_start[r + 1])
                 continue;
-            double P[9];
-            elastic_piola(&e->stress[6 * (size_t)p], w[p], P);
-            row_scatter(b, r, P, f4);
-            for (int a = 0; a < 9; ++a)
-                fold[9 * (L - p0) + a] -= P[a];
+            subcell_scatter(b, r, &e->stress[6 * (size_t)p], w[p],
+                            &fold[9 * (L - p0)], f4);
         }
     for (int L = p0; L < p1; ++L)
         row_scatter(b, gsn_point_blocks_main_row(b, k, L), &fold[9 * (L - p0)],
@@ -1495,10 +1503,8 @@ int gsn_explicit_settle(struct gsn_explicit *e)
             GSN_FIELD_ACCELERATION, e->time, e->new_acceleration));
     memcpy(e->acceleration, e->new_acceleration,
            sizeof(double) * 3 * (size_t)n);
-    /* the external force of this state starts the next trapezoid */
-    for (size_t i = 0; i < 3 * (size_t)n; ++i)
-        e->previous_external[i] =
-            e->f_ext[i] + e->reaction[i] + e->boundary_force[i];
+    /* reactions and the kinetic energy; the external force of this state
+     * starts the next trapezoid (no work: d does not move) */
     struct gsn_step_sums sums = step_loop(e, n, reactions_and_energies);
     e->kinetic_energy = sums.kinetic;
     return GSN_OK;

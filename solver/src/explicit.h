@@ -172,7 +172,9 @@ struct gsn_explicit {
      * extremes of det F_inc, and where the largest strain is. */
     double distortion_strain, distortion_jacobian_min, distortion_jacobian_max;
     int distortion_point;
-    double *block_distortion;     /* blocks x 4: the same per block */
+    double *block_distortion;     /* blocks x 6: the same per block, with
+                                     the points failed in the step and the
+                                     first of them */
     int interpolation_iterations; /* of the velocity at the last carry-over */
 };
 
