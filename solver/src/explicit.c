@@ -750,7 +750,7 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
         if (e->point_dead[p]) {
             memset(&G[9 * b], 0, 9 * sizeof(double));
             Jmid[b] = 1.0;
-        } else {
+        } else if (e->track_distortion) {
             double strain = green_strain_norm(F1);
             if (strain > strain_max) {
                 strain_max = strain;

@@ -167,6 +167,8 @@ struct gsn_explicit {
                                    stopping the run */
     int *point_dead;            /* main points: 1 once failed */
     int dead_count;             /* main points failed so far */
+    int track_distortion;       /* 1: measure the distortion below (reference
+                                   updates need it; the step skips it else) */
     /* Distortion of the step just done over the live main points, from
      * F_inc = I + H: the largest |E|, E = (F^T F - I) / 2 (Frobenius), the
      * extremes of det F_inc, and where the largest strain is. */

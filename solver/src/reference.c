@@ -54,6 +54,7 @@ static int build(const struct gsn_model *m, const struct gsn_case *c,
         report->seconds_loop = omp_get_wtime() - t2;
     }
     (*loop)->allow_failure = !c->small_strain;
+    (*loop)->track_distortion = c->reference_update;
     /* The loop reads its own packed copy of the gradient rows
      * (point_blocks.h): the quadrature's are freed, 709 MB of the working
      * set on Slope I with MSCNI. */

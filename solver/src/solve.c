@@ -486,6 +486,14 @@ done:
     return rc;
 }
 
+/* The last step of the run: the loop's step plus those of its present time
+ * step to time.end (a reference update may change the step). */
+static long steps_to_end(const struct run *r)
+{
+    const struct gsn_explicit *e = r->reference->loop;
+    return e->step + (long)ceil((r->c->time_end - e->time) / e->dt - 1e-9);
+}
+
 static int read_checkpoint(struct run *r)
 {
     struct gsn_explicit *e = r->reference->loop;
@@ -551,8 +559,7 @@ static int read_checkpoint(struct run *r)
     e->dt = now_step;
     e->time_base = base_time;
     e->step_base = base_step;
-    r->total_steps =
-        e->step + (long)ceil((r->c->time_end - e->time) / e->dt - 1e-9);
+    r->total_steps = steps_to_end(r);
     GSN_CHECK_GOTO(saved_time <= r->c->time_end + 0.5 * e->dt, rc,
                    GSN_ERR_INPUT, done,
                    "%s: its checkpoint is at t = %.6g s, after this case's "
@@ -650,7 +657,7 @@ static int choose_time_step(struct run *r)
             printf("time step: %.4g s (the stable step is %.4g s)%s\n", e->dt,
                    stable, c->time_step > stable ? ", forced" : "");
     }
-    r->total_steps = (long)ceil(c->time_end / e->dt - 1e-9);
+    r->total_steps = steps_to_end(r);
     r->reference->first_step = e->dt;
     return GSN_OK;
 }
@@ -833,12 +840,9 @@ static int update_reference(struct run *r)
     GSN_CALL(gsn_reference_update(r->reference, &report));
     traction_resultants(r);
     const struct gsn_explicit *e = r->reference->loop;
-    /* the steps left at the step the update chose */
-    r->total_steps =
-        e->step + (long)ceil((r->c->time_end - e->time) / e->dt - 1e-9);
+    r->total_steps = steps_to_end(r);
     if (!r->options->quiet) {
         const double *x = &r->model.position[3 * report.particle];
-
         fprintf(stderr,
                 "%sreference update %d at step %ld, t = %.4g s (%s: |E| %.3g, "
                 "det F %.3g..%.3g, at particle %d, first at %g, %g, %g): "
