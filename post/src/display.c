@@ -71,7 +71,29 @@ static void server_stop(pid_t server)
     waitpid(server, NULL, 0);
 }
 
-/* Starts Xvfb on :number; 1 when it accepts connections (DISPLAY set). */
+/* The pid the X server that holds :number wrote into its lock file
+ * (/tmp/.X<number>-lock, the pid as text), or 0. */
+static pid_t display_owner(int number)
+{
+    char lock_path[64], text[32] = {0};
+    snprintf(lock_path, sizeof lock_path, "/tmp/.X%d-lock", number);
+    int fd = open(lock_path, O_RDONLY);
+    if (fd < 0)
+        return 0;
+    ssize_t n = read(fd, text, sizeof text - 1);
+    close(fd);
+    if (n <= 0)
+        return 0;
+    text[n] = '\0';
+    long pid = strtol(text, NULL, 10);
+    return pid > 0 ? (pid_t)pid : 0;
+}
+
+/* Starts Xvfb on :number; 1 when it accepts connections (DISPLAY set).
+ * The display is ours only when its lock file names our server: another
+ * post may have started one on the same number a moment before (between
+ * display_in_use and here), and rendering on its server would end when it
+ * stops it (a crash in libX11, seen with two runs side by side). */
 static int server_start(const char *program, int number, pid_t *server)
 {
     char name[32];
@@ -88,8 +110,12 @@ static int server_start(const char *program, int number, pid_t *server)
             dup2(null, STDOUT_FILENO);
             dup2(null, STDERR_FILENO);
         }
+        /* -noreset: an X server resets when its last client leaves and
+         * refuses connections meanwhile; every render window is a client,
+         * so the next one failed now and then ("bad X server connection",
+         * a crash in XSync) when the host was busy */
         execl(program, "Xvfb", name, "-screen", "0", "1280x1024x24",
-              "-nolisten", "tcp", (char *)NULL);
+              "-nolisten", "tcp", "-noreset", (char *)NULL);
         _exit(127);
     }
     char socket_path[64];
@@ -97,7 +123,10 @@ static int server_start(const char *program, int number, pid_t *server)
     for (int waited = 0; waited < START_WAIT_MS; waited += POLL_MS) {
         if (waitpid(child, NULL, WNOHANG) == child)
             return 0; /* it exited: the number was taken meanwhile */
-        if (access(socket_path, F_OK) == 0) {
+        pid_t owner = display_owner(number);
+        if (owner != 0 && owner != child)
+            break; /* another server holds it: ours will give up */
+        if (owner == child && access(socket_path, F_OK) == 0) {
             setenv("DISPLAY", name, 1);
             if (gsn_vtk_display_usable()) {
                 *server = child;

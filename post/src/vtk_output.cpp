@@ -390,6 +390,10 @@ int chart_write(const char *path, const char *title, const char *x_label,
     if (!style)
         style = &plain;
     vtkNew<vtkContextView> view;
+    // No interactor: a chart is drawn once. VTK 9.1's X interactor opens a
+    // display of its own at the first Render and calls XSync on it even when
+    // that failed (a crash in libX11 with several posts side by side).
+    view->GetRenderWindow()->SetInteractor(nullptr);
     view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
     view->GetRenderWindow()->SetOffScreenRendering(1);
     view->GetRenderWindow()->SetSize(CHART_WIDTH, CHART_HEIGHT);

@@ -1,0 +1,46 @@
+#!/bin/sh
+# Several posts at once, each with its private Xvfb (post/src/display.c):
+# every one ends with status 0 and writes its pictures and plots. Before
+# Xvfb ran with -noreset, a server reset between two render windows (its
+# last client gone) refused the next window now and then: "bad X server
+# connection" (abort) or a crash in XSync, 9 of 32 posts when four ran side
+# by side on 2 cores (2026-12-02).
+geoscni="$1"
+out=$(mktemp -d /tmp/geoscni-test-post-side-XXXXXX)
+trap 'rm -rf "$out"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+posts=4
+rounds=3
+"$geoscni" run box.yaml -o "$out/case" -q --no-pictures || {
+    echo "FAIL: the run of box.yaml failed"
+    exit 1
+}
+round=1
+while [ $round -le $rounds ]; do
+    i=1
+    while [ $i -le $posts ]; do
+        rm -rf "$out/p$i"
+        cp -r "$out/case" "$out/p$i"
+        rm -rf "$out/p$i/pictures" "$out/p$i/plots"
+        i=$((i + 1))
+    done
+    i=1
+    while [ $i -le $posts ]; do
+        ("$geoscni" post "$out/p$i" -q >"$out/log$i" 2>&1
+         echo $? >"$out/status$i") &
+        i=$((i + 1))
+    done
+    wait
+    i=1
+    while [ $i -le $posts ]; do
+        status=$(cat "$out/status$i")
+        [ "$status" = 0 ] || fail "round $round, post $i: status $status: $(head -c 300 "$out/log$i")"
+        [ -s "$out/p$i/plots/energy.png" ] && ls "$out/p$i/pictures/"damage_*.png >/dev/null 2>&1 ||
+            fail "round $round, post $i: pictures or plots missing"
+        i=$((i + 1))
+    done
+    round=$((round + 1))
+done
+echo "$((posts * rounds)) posts side by side, $failures failures"
+[ $failures -eq 0 ]
