@@ -13,9 +13,13 @@
 # footing at 5 times the case's speed (its ramp kept) is first solved to T
 # s once, and every run restarts from that state for STEPS steps (Slope I
 # with plain SCNI: T = 2 is past the peak, damage up to 0.85).
+# UPDATE_EVERY=K adds a reference-configuration update every K steps (issue
+# 15, point 4): the rate then includes them, and each run's line their count
+# and share of the solve.
 # Usage: bench/solver_bench.sh [BUILD_DIR] [RUNS] [STEPS] [CASE] [INTEGRATION]
 #        (default build, 3, 300, geometries/slope_I.yaml, the case's)
-#        THREADS="1 2" (default) and LOADED (unset) in the environment
+#        THREADS="1 2" (default), LOADED and UPDATE_EVERY (unset) in the
+#        environment
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-build}
@@ -48,6 +52,10 @@ fi
 if [ -n "$integration" ]; then
     sed -i -e "s|^integration:.*|integration: $integration|" "$work/case.yaml"
 fi
+if [ -n "${UPDATE_EVERY:-}" ]; then
+    step=$(sed -n 's/^ *step: *\([0-9.e-]*\).*/\1/p' "$work/case.yaml")
+    echo "reference_update: {every: $(echo "$UPDATE_EVERY ${step:-1e-3}" | awk '{print $1 * $2}'), min_steps: 1}" >>"$work/case.yaml"
+fi
 "$geoscni" pre "$work/case.yaml" -o "$work/out" -q
 restart=
 if [ -n "$loaded" ]; then
@@ -77,7 +85,8 @@ for threads in $thread_counts; do
         rate=$(tr '\r' '\n' <"$work/log" | grep 'took' | sed 's/.*  \([0-9.e+]*\) particle-steps.*/\1/')
         particles=$(grep '^solver:' "$work/log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
         phases=$(grep '^step time:' "$work/log" | sed 's/^step time: //')
-        echo "  $threads thread(s), run $i: $rate particle-steps/s ($particles particles)${phases:+; $phases}"
+        updates=$(grep '^reference updates:' "$work/log" | sed 's/^reference updates: \([0-9]*\) .*, \([0-9.e+-]* s\), \([0-9.]*%\) of the solve.*/\1 updates, \2, \3 of the solve/')
+        echo "  $threads thread(s), run $i: $rate particle-steps/s ($particles particles)${phases:+; $phases}${updates:+; $updates}"
         echo "$rate" >>"$work/rates.$threads"
         i=$((i + 1))
     done
