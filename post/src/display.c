@@ -92,8 +92,8 @@ static pid_t display_owner(int number)
 /* Starts Xvfb on :number; 1 when it accepts connections (DISPLAY set).
  * The display is ours only when its lock file names our server: another
  * post may have started one on the same number a moment before (between
- * display_in_use and here), and rendering on its server would end when it
- * stops it (a crash in libX11, seen with two runs side by side). */
+ * display_in_use and here), and rendering on its server would end when
+ * that post stops it. */
 static int server_start(const char *program, int number, pid_t *server)
 {
     char name[32];
