@@ -793,6 +793,20 @@ static int read_kinematics(struct reader *r, const yaml_node_t *root,
     return GSN_OK;
 }
 
+/* plane_strain: x, y or z: the displacement along that axis is zero at
+ * every particle, not only on the faces that rollers hold (a slab that
+ * stands for a plane-strain section; docs/solver.md, "Plane strain"). */
+static int read_plane_strain(struct reader *r, const yaml_node_t *root,
+                             struct gsn_case *c)
+{
+    static const char *const axes[] = {"x", "y", "z", NULL};
+    yaml_node_t *node = mapping_find(r, root, "plane_strain");
+    if (!node)
+        return GSN_OK;
+    GSN_CALL(parse_word(r, node, "plane_strain", axes, &c->plane_strain_axis));
+    return GSN_OK;
+}
+
 /* reference_update: off (the default), on, or {strain, volume: [min, max],
  * every, min_steps} (docs/solver.md, "Large deformation"); with large
  * kinematics and nodal integration only. */
@@ -908,6 +922,7 @@ static void case_set_defaults(struct gsn_case *c)
     c->stabilization_coefficient = GSN_DEFAULT_STABILIZATION_COEFFICIENT;
     c->time_step_auto = 1;
     c->time_step_safety = GSN_DEFAULT_TIME_STEP_SAFETY;
+    c->plane_strain_axis = -1;
     c->output_fields = GSN_DEFAULT_OUTPUT_FIELDS;
     c->reference_strain = GSN_DEFAULT_REFERENCE_STRAIN;
     c->reference_volume[0] = GSN_DEFAULT_REFERENCE_VOLUME_MIN;
@@ -918,9 +933,10 @@ static void case_set_defaults(struct gsn_case *c)
 static int read_document(struct reader *r, struct gsn_case *c)
 {
     static const char *const keys[] = {
-        "geometry", "particles",        "kernel", "integration", "material",
-        "gravity",  "boundary",         "time",   "damping",     "kinematics",
-        "output",   "reference_update", NULL};
+        "geometry",     "particles",  "kernel",   "integration",
+        "material",     "gravity",    "boundary", "time",
+        "damping",      "kinematics", "output",   "reference_update",
+        "plane_strain", NULL};
     yaml_node_t *root = yaml_document_get_root_node(&r->document);
     GSN_CHECK(root != NULL, GSN_ERR_INPUT,
               "%s:1: the case file is empty; expected a mapping with "
@@ -937,6 +953,7 @@ static int read_document(struct reader *r, struct gsn_case *c)
     GSN_CALL(read_time(r, root, c));
     GSN_CALL(read_damping(r, root, c));
     GSN_CALL(read_kinematics(r, root, c));
+    GSN_CALL(read_plane_strain(r, root, c));
     GSN_CALL(read_reference_update(r, root, c));
     GSN_CALL(read_output(r, root, c));
     return GSN_OK;
@@ -1133,13 +1150,15 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
     fprintf(out, ", ramp: %.17g}\n", c->time_ramp);
     fprintf(out, "damping: {local: %.17g}\n", c->damping_local);
     fprintf(out, "kinematics: %s\n", c->small_strain ? "small" : "large");
+    if (c->plane_strain_axis >= 0)
+        fprintf(out, "plane_strain: %c\n", "xyz"[c->plane_strain_axis]);
     if (c->reference_update) {
         fprintf(out, "reference_update: {strain: %.17g, volume: [%.17g, %.17g]",
                 c->reference_strain, c->reference_volume[0],
                 c->reference_volume[1]);
         if (c->reference_every > 0.0)
             fprintf(out, ", every: %.17g", c->reference_every);
-        fprintf(out, "}\n");
+        fprintf(out, ", min_steps: %d}\n", c->reference_min_steps);
     } else
         fprintf(out, "reference_update: off\n");
     fputs("output: {", out);

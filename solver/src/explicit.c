@@ -405,6 +405,7 @@ int gsn_explicit_create(const struct gsn_model *m,
     e->dt = dt;
     e->damping_local = c->damping_local;
     e->small_strain = c->small_strain;
+    e->held_axis = c->plane_strain_axis;
     memcpy(e->gravity, c->gravity, sizeof e->gravity);
     e->load_factor = 1.0;
     e->thread_count = omp_get_max_threads();
@@ -1190,12 +1191,14 @@ static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
                 e->damping_force[at] = damping;
                 f += damping;
             }
-            a1[at] = f / e->mass[i];
+            a1[at] = k == e->held_axis ? 0.0 : f / e->mass[i];
         }
     }
 }
 
-/* v_{n+1} = v_n + dt/2 (a_n + a_{n+1}) (eq. (34)). */
+/* v_{n+1} = v_n + dt/2 (a_n + a_{n+1}) (eq. (34)); plane_strain holds one
+ * component at zero in every coefficient (its a, v and u stay 0: so does
+ * the approximation's, sum_I Psi_I d_I, at every point). */
 static void new_velocities(struct gsn_explicit *e, int i0, int i1,
                            struct gsn_step_sums *sums)
 {
@@ -1679,6 +1682,9 @@ int gsn_explicit_carry_over(struct gsn_explicit *to,
     GSN_CALL_GOTO(gsn_explicit_interpolate(to, field, to->velocity,
                                            &to->interpolation_iterations),
                   rc, done);
+    if (to->held_axis >= 0) /* exactly 0, not the solver's 1e-13 */
+        for (int I = 0; I < n; ++I)
+            to->velocity[3 * I + to->held_axis] = 0.0;
     memset(to->displacement, 0, sizeof(double) * 3 * (size_t)n);
     to->load_factor = from->load_factor;
     GSN_CALL_GOTO(gsn_explicit_set_point_mass(to, from->point_mass), rc, done);

@@ -122,6 +122,8 @@ struct gsn_explicit {
                                         stress is integrated as a rate) */
     int small_strain;                /* kinematics: small: F = I in the
                                         forces, G = sym dH (case.h) */
+    int held_axis;                   /* plane_strain: the component that is
+                                        zero at every coefficient, -1 none */
     int skip_boundary_term;          /* 1: leave out the boundary term (negative
                                         control of the patch test only) */
     int plastic_offset;              /* equivalent_plastic_strain in the

@@ -127,6 +127,9 @@ struct gsn_case {
                                 smoothly from 0 (0: at once) */
     double damping_local;    /* Cundall's local damping coefficient (0: none) */
     int small_strain;        /* kinematics: small (no geometry update) */
+    int plane_strain_axis;   /* plane_strain: x, y or z (0, 1, 2): the
+                                displacement along it is zero everywhere;
+                                -1: none */
     /* reference_update: the shape functions and cells built again on the
      * current configuration when the body has moved far enough from the
      * last one (large kinematics, nodal integration; docs/solver.md) */
