@@ -22,6 +22,7 @@ void gsn_kernel_options_from_case(const struct gsn_case *c,
     options->stabilization = c->stabilization;
     options->stabilization_coefficient = c->stabilization_coefficient;
     options->stabilization_subcells = GSN_DEFAULT_STABILIZATION_SUBCELLS;
+    options->cover_neighbours = 0;
 }
 
 void gsn_quadrature_destroy(struct gsn_quadrature **q)
@@ -531,7 +532,8 @@ static int quadrature_build(const struct gsn_model *m,
     q->particle_count = n;
     double *spacing = malloc((size_t)n * sizeof *spacing);
     GSN_CHECK(spacing, GSN_ERR_MEMORY, "cannot allocate %d doubles", n);
-    int rc = gsn_rk_spacing_from_facets(m, spacing);
+    int rc = gsn_rk_spacing_from_facets(
+        m, o->cover_neighbours ? o->support : 0.0, spacing);
     if (rc == GSN_OK)
         rc = gsn_rk_create(n, m->position, spacing, o->support, o->basis_order,
                            &q->rk);

@@ -39,6 +39,9 @@ static int build(const struct gsn_model *m, const struct gsn_case *c,
 {
     struct gsn_kernel_options kernel;
     gsn_kernel_options_from_case(c, &kernel);
+    /* a deformed reference (an update, or its restart): every particle
+     * covered by its neighbours' kernels */
+    kernel.cover_neighbours = epoch > 0.0;
     double t0 = omp_get_wtime();
     GSN_CALL(gsn_quadrature_create(m, &kernel, NULL, 0, quadrature));
     double t1 = omp_get_wtime();

@@ -447,11 +447,13 @@ fail:
     return rc;
 }
 
-int gsn_rk_spacing_from_facets(const struct gsn_model *m, double *spacing)
+int gsn_rk_spacing_from_facets(const struct gsn_model *m, double cover_support,
+                               double *spacing)
 {
     int n = m->particle_count;
-    double *area = calloc((size_t)n > 0 ? (size_t)n : 1, sizeof *area);
+    double *area = calloc(2 * ((size_t)n > 0 ? (size_t)n : 1), sizeof *area);
     GSN_CHECK(area != NULL, GSN_ERR_MEMORY, "cannot allocate %d doubles", n);
+    double *farthest = area + (n > 0 ? n : 1);
     for (int p = 0; p < n; ++p)
         spacing[p] = 0.0;
     for (int f = 0; f < m->facet_count; ++f) {
@@ -468,6 +470,10 @@ int gsn_rk_spacing_from_facets(const struct gsn_model *m, double *spacing)
         spacing[q] += a * d;
         area[o] += a;
         area[q] += a;
+        if (a > 0.0) {
+            farthest[o] = d > farthest[o] ? d : farthest[o];
+            farthest[q] = d > farthest[q] ? d : farthest[q];
+        }
     }
     for (int p = 0; p < n; ++p) {
         if (!(area[p] > 0.0)) {
@@ -478,6 +484,10 @@ int gsn_rk_spacing_from_facets(const struct gsn_model *m, double *spacing)
                       p);
         }
         spacing[p] /= area[p];
+        /* 1e-6 past the farthest neighbour: inside the support */
+        double cover = farthest[p] * (1.0 + 1e-6) / cover_support;
+        if (cover_support > 0.0 && cover > spacing[p])
+            spacing[p] = cover;
     }
     free(area);
     return GSN_OK;

@@ -147,7 +147,7 @@ int main(void)
 
     /* h_I local: it follows the grading */
     double *h = malloc(sizeof(double) * (size_t)m->particle_count);
-    TEST_INT(gsn_rk_spacing_from_facets(m, h), GSN_OK);
+    TEST_INT(gsn_rk_spacing_from_facets(m, 0.0, h), GSN_OK);
     double h_in = median_spacing(m, h, 1), h_out = median_spacing(m, h, 0);
     printf("  h_I median: %.3g m in the refinement, %.3g m outside\n", h_in,
            h_out);

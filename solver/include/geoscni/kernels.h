@@ -81,8 +81,13 @@ void gsn_rk_destroy(struct gsn_rk **rk);
 /* Local spacing h_I from the nodal domains: the facet-area-weighted mean
  * distance to the particles that share a facet with I (DESIGN.md, "Support
  * size"). Degenerate facets of cospherical lattices have no area and no
- * weight. spacing has particle_count entries, m. */
-int gsn_rk_spacing_from_facets(const struct gsn_model *m, double *spacing);
+ * weight. With cover_support > 0 (the support a/h), h_I is raised where
+ * needed for the support to reach every particle that shares a facet of
+ * positive area with I: on a deformed configuration a particle beside a
+ * sliver or a gap was otherwise covered by too few kernels for the moment
+ * matrix (docs/deep_penetration.md). spacing has particle_count entries. */
+int gsn_rk_spacing_from_facets(const struct gsn_model *m, double cover_support,
+                               double *spacing);
 
 /* The particles whose kernel covers x (|x_k - X_Ik| < a_I for k = 0..2), in
  * ascending order. Returns their number; only the first capacity are
@@ -119,6 +124,8 @@ struct gsn_kernel_options {
     enum gsn_stabilization stabilization;
     double stabilization_coefficient; /* MSCNI: weight of the sub-cells */
     int stabilization_subcells;       /* MSCNI: 6 (+-x, +-y, +-z) or 2 */
+    int cover_neighbours;             /* supports reach every facet neighbour (a
+                                         reference-configuration update's build) */
 };
 
 void gsn_kernel_options_from_case(const struct gsn_case *c,
