@@ -447,6 +447,12 @@ fail:
     return rc;
 }
 
+/* gsn_rk_spacing_from_facets: supports raised to cover a farther
+ * neighbour past COVER_STRETCH times their own, up to COVER_LIMIT times. */
+enum { COVER_STRETCH_PERCENT = 125, COVER_LIMIT_PERCENT = 200 };
+#define COVER_STRETCH (COVER_STRETCH_PERCENT / 100.0)
+#define COVER_LIMIT (COVER_LIMIT_PERCENT / 100.0)
+
 int gsn_rk_spacing_from_facets(const struct gsn_model *m, double cover_support,
                                double *spacing)
 {
@@ -484,10 +490,13 @@ int gsn_rk_spacing_from_facets(const struct gsn_model *m, double cover_support,
                       p);
         }
         spacing[p] /= area[p];
-        /* 1e-6 past the farthest neighbour: inside the support */
+        /* 1e-6 past the farthest neighbour: inside the support; only
+         * where a cell is stretched (an undeformed mesh has 0.5% of its
+         * particles past 1.25, half of them past 1), and at most twice the
+         * support (a neighbour farther off is an outlier, not a sliver) */
         double cover = farthest[p] * (1.0 + 1e-6) / cover_support;
-        if (cover_support > 0.0 && cover > spacing[p])
-            spacing[p] = cover;
+        if (cover_support > 0.0 && cover > COVER_STRETCH * spacing[p])
+            spacing[p] = fmin(cover, COVER_LIMIT * spacing[p]);
     }
     free(area);
     return GSN_OK;
