@@ -1198,7 +1198,8 @@ static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
 
 /* v_{n+1} = v_n + dt/2 (a_n + a_{n+1}) (eq. (34)); plane_strain holds one
  * component at zero in every coefficient (its a, v and u stay 0: so does
- * the approximation's, sum_I Psi_I d_I, at every point). */
+ * the approximation's, sum_I Psi_I d_I, at every point, and an update's
+ * interpolation of that zero field returns 0 before any iteration). */
 static void new_velocities(struct gsn_explicit *e, int i0, int i1,
                            struct gsn_step_sums *sums)
 {
@@ -1682,9 +1683,6 @@ int gsn_explicit_carry_over(struct gsn_explicit *to,
     GSN_CALL_GOTO(gsn_explicit_interpolate(to, field, to->velocity,
                                            &to->interpolation_iterations),
                   rc, done);
-    if (to->held_axis >= 0) /* exactly 0, not the solver's 1e-13 */
-        for (int I = 0; I < n; ++I)
-            to->velocity[3 * I + to->held_axis] = 0.0;
     memset(to->displacement, 0, sizeof(double) * 3 * (size_t)n);
     to->load_factor = from->load_factor;
     GSN_CALL_GOTO(gsn_explicit_set_point_mass(to, from->point_mass), rc, done);
