@@ -449,9 +449,7 @@ fail:
 
 /* gsn_rk_spacing_from_facets: supports raised to cover a farther
  * neighbour past COVER_STRETCH times their own, up to COVER_LIMIT times. */
-enum { COVER_STRETCH_PERCENT = 125, COVER_LIMIT_PERCENT = 200 };
-#define COVER_STRETCH (COVER_STRETCH_PERCENT / 100.0)
-#define COVER_LIMIT (COVER_LIMIT_PERCENT / 100.0)
+static const double COVER_STRETCH = 1.25, COVER_LIMIT = 2.0;
 
 int gsn_rk_spacing_from_facets(const struct gsn_model *m, double cover_support,
                                double *spacing)
