@@ -344,9 +344,9 @@ static int run(const struct problem *p, struct gsn_case *c,
         gsn_material_model_create(gsn_material_name_for_case(&c->material),
                                   &c->material, &material),
         rc, done);
-    GSN_CALL_GOTO(
-        gsn_constraints_create(&model, c, &q->particle_values, &constraints),
-        rc, done);
+    GSN_CALL_GOTO(gsn_constraints_create(&model, c, &q->particle_values, NULL,
+                                         &constraints),
+                  rc, done);
     GSN_CALL_GOTO(
         gsn_explicit_create(&model, q, material, constraints, c, 1.0, &e), rc,
         done);

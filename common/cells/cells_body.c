@@ -3,7 +3,8 @@
  * have turned inside out (issue 15). The new body is the set of Delaunay
  * tetrahedra of the current positions whose centroids lie inside the old
  * body's boundary surface (its winding number, counted along a ray, so a
- * surface that has folded over itself still encloses what it did), and its
+ * surface that has folded over itself still encloses what it did) or that
+ * are small against their nodes' spacing (GSN_BODY_ALPHA), and its
  * boundary faces take the surfaces of the old boundary triangles nearest
  * to them: the boundary and its names follow the particles. */
 #include "delaunay.h"
@@ -16,6 +17,12 @@
 
 /* Tetrahedra of less than this share of the mean volume are flat. */
 #define GSN_BODY_FLAT 1e-10
+/* A Delaunay tetrahedron whose circumradius is at most this many times the
+ * largest nearest-neighbour distance of its nodes is body wherever it
+ * lies (an alpha shape): so is the soil that has flowed past the old
+ * boundary (around a footing's corner, where the old surface is stretched
+ * over it). A cubic lattice of spacing h has circumradii 0.87 h. */
+#define GSN_BODY_ALPHA 1.0
 
 const int gsn_cells_tetrahedron_face[4][3] = {
     {1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
@@ -382,6 +389,53 @@ static int nearest_label(const struct boundary *s, const double *p)
     return label;
 }
 
+/* The radius of the sphere through the nodes v of a tetrahedron. */
+static double circumradius(const double *x, const int v[4])
+{
+    double a[3], b[3], c[3];
+    for (int k = 0; k < 3; ++k) {
+        a[k] = x[3 * v[1] + k] - x[3 * v[0] + k];
+        b[k] = x[3 * v[2] + k] - x[3 * v[0] + k];
+        c[k] = x[3 * v[3] + k] - x[3 * v[0] + k];
+    }
+    double bc[3] = {b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2],
+                    b[0] * c[1] - b[1] * c[0]},
+           ca[3] = {c[1] * a[2] - c[2] * a[1], c[2] * a[0] - c[0] * a[2],
+                    c[0] * a[1] - c[1] * a[0]},
+           ab[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                    a[0] * b[1] - a[1] * b[0]};
+    double aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2],
+           bb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2],
+           cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    double det = 2.0 * (a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2]), r2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        double o = (aa * bc[k] + bb * ca[k] + cc * ab[k]) / det;
+        r2 += o * o;
+    }
+    return sqrt(r2);
+}
+
+/* Each particle's distance to its nearest neighbour: the shortest
+ * Delaunay edge at it (the nearest neighbour is always a Delaunay one). */
+static void nearest_distances(const double *x, int particle_count,
+                              const int *tetrahedra, int count, double *nearest)
+{
+    for (int i = 0; i < particle_count; ++i)
+        nearest[i] = INFINITY;
+    for (int t = 0; t < count; ++t)
+        for (int j = 0; j < 4; ++j)
+            for (int l = j + 1; l < 4; ++l) {
+                int p = tetrahedra[4 * t + j], q = tetrahedra[4 * t + l];
+                double d = 0.0;
+                for (int k = 0; k < 3; ++k)
+                    d += (x[3 * p + k] - x[3 * q + k]) *
+                         (x[3 * p + k] - x[3 * q + k]);
+                d = sqrt(d);
+                nearest[p] = fmin(nearest[p], d);
+                nearest[q] = fmin(nearest[q], d);
+            }
+}
+
 int gsn_body_remesh(const struct gsn_body *old, const double *x,
                     int particle_count, struct gsn_body *out)
 {
@@ -389,6 +443,7 @@ int gsn_body_remesh(const struct gsn_body *old, const double *x,
     struct boundary s;
     int count = 0, *tetrahedra = NULL, *neighbour = NULL;
     char *inside = NULL;
+    double *nearest = NULL;
     int rc = GSN_OK;
     GSN_CALL(boundary_create(old, x, particle_count, &s));
     int status = gsn_delaunay_tetrahedra(x, particle_count, &count, &tetrahedra,
@@ -412,15 +467,23 @@ int gsn_body_remesh(const struct gsn_body *old, const double *x,
     /* flat ones (nearly coplanar particles, on a plane face most often)
      * hold no volume and no cell needs them */
     double flat = GSN_BODY_FLAT * total / count;
+    nearest = malloc(sizeof(double) * ((size_t)particle_count + 1));
+    GSN_CHECK_GOTO(nearest, rc, GSN_ERR_MEMORY, done,
+                   "cannot allocate %d distances", particle_count);
+    nearest_distances(x, particle_count, tetrahedra, count, nearest);
     int kept = 0;
 #pragma omp parallel for reduction(+ : kept)
     for (int t = 0; t < count; ++t) {
-        double c[3] = {0.0, 0.0, 0.0};
-        for (int j = 0; j < 4; ++j)
+        const int *v = &tetrahedra[4 * t];
+        double c[3] = {0.0, 0.0, 0.0}, local = 0.0;
+        for (int j = 0; j < 4; ++j) {
             for (int k = 0; k < 3; ++k)
-                c[k] += 0.25 * x[3 * tetrahedra[4 * t + j] + k];
-        inside[t] = gsn_body_tetrahedron_volume(x, &tetrahedra[4 * t]) > flat &&
-                    winding(&s, c) > 0;
+                c[k] += 0.25 * x[3 * v[j] + k];
+            local = fmax(local, nearest[v[j]]);
+        }
+        inside[t] = gsn_body_tetrahedron_volume(x, v) > flat &&
+                    (circumradius(x, v) <= GSN_BODY_ALPHA * local ||
+                     winding(&s, c) > 0);
         kept += inside[t];
     }
     GSN_CHECK_GOTO(kept > 0, rc, GSN_ERR_NUMERICAL, done,
@@ -460,6 +523,7 @@ done:
         gsn_body_free(out);
     boundary_free(&s);
     free(inside);
+    free(nearest);
     free(tetrahedra);
     free(neighbour);
     return rc;

@@ -28,6 +28,8 @@ static int read_refinements(struct reader *r, const yaml_node_t *particles,
                             struct gsn_case *c);
 static int read_symmetry(struct reader *r, const yaml_node_t *entry,
                          const char *context, struct gsn_boundary *b);
+static int read_rigid(struct reader *r, const yaml_node_t *entry,
+                      const char *context, struct gsn_boundary *b);
 static int read_output_economy(struct reader *r, const yaml_node_t *output,
                                struct gsn_case *c);
 static void write_refinements(const struct gsn_case *c, FILE *out);
@@ -634,8 +636,8 @@ static int read_vector3(struct reader *r, const yaml_node_t *node,
 static int read_boundary_entry(struct reader *r, const yaml_node_t *key,
                                const yaml_node_t *node, struct gsn_boundary *b)
 {
-    static const char *const keys[] = {"fix", "velocity", "traction",
-                                       "symmetry", NULL};
+    static const char *const keys[] = {"fix",      "velocity", "traction",
+                                       "symmetry", "rigid",    NULL};
     static const char *const components[] = {"x", "y", "z", NULL};
     snprintf(b->name, sizeof b->name, "%s", scalar_text(key));
     GSN_CHECK(strlen(scalar_text(key)) < GSN_NAME_SIZE, GSN_ERR_INPUT,
@@ -691,6 +693,7 @@ static int read_boundary_entry(struct reader *r, const yaml_node_t *key,
                 r->path, node_line(traction), component_names[k], context);
     }
     GSN_CALL(read_symmetry(r, node, context, b));
+    GSN_CALL(read_rigid(r, node, context, b));
     return GSN_OK;
 }
 
@@ -1138,8 +1141,9 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
         }
         fputs("], velocity: ", out);
         write_components(out, b->has_velocity, b->velocity);
-        fprintf(out, ", traction: [%.17g, %.17g, %.17g]}\n", b->traction[0],
-                b->traction[1], b->traction[2]);
+        fprintf(out, ", traction: [%.17g, %.17g, %.17g]%s}\n", b->traction[0],
+                b->traction[1], b->traction[2],
+                b->rigid ? ", rigid: true" : "");
     }
     if (c->time_step_auto)
         fprintf(out, "time: {end: %.17g, step: auto, safety: %.17g",
@@ -1319,6 +1323,30 @@ static int read_symmetry(struct reader *r, const yaml_node_t *entry,
               "%s:%d: '%s' is a symmetry plane: it takes no 'fix', "
               "'velocity' or 'traction' (the component normal to the plane "
               "is held)",
+              r->path, node_line(node), context);
+    return GSN_OK;
+}
+
+/* boundary.NAME.rigid: true makes the surface the face of a rigid body
+ * (solver/src/contact.h): it needs a velocity that moves it. */
+static int read_rigid(struct reader *r, const yaml_node_t *entry,
+                      const char *context, struct gsn_boundary *b)
+{
+    yaml_node_t *node = mapping_find(r, entry, "rigid");
+    if (!node)
+        return GSN_OK;
+    static const char *const truth[] = {"false", "true", NULL};
+    char name[GSN_NAME_SIZE + 32];
+    snprintf(name, sizeof name, "%s.rigid", context);
+    GSN_CALL(parse_word(r, node, name, truth, &b->rigid));
+    double speed = 0.0;
+    for (int k = 0; k < 3; ++k)
+        if (b->has_velocity[k])
+            speed += b->velocity[k] * b->velocity[k];
+    GSN_CHECK(!b->rigid || speed > 0.0, GSN_ERR_INPUT,
+              "%s:%d: '%s' is a rigid body, which moves at its 'velocity': "
+              "give it a nonzero velocity, such as velocity: [null, null, "
+              "-0.1] (the body is the surface swept against the motion)",
               r->path, node_line(node), context);
     return GSN_OK;
 }

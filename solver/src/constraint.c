@@ -53,13 +53,15 @@ struct component_constraint {
 struct gsn_constraints {
     int particle_count;
     int surface_count;
-    double ramp;       /* s, time.ramp */
-    double epoch;      /* s: displacements are prescribed from then on (the
-                          time of the last reference update) */
-    int *surface_mask; /* per model surface: constrained components */
-    int *entry_of;     /* particles x 3: the boundary entry whose
-                          prescription holds the component, or -1 */
-    int *slot[3];      /* slot[c][I]: position of I in B_c, or -1 */
+    double ramp;        /* s, time.ramp */
+    double epoch;       /* s: displacements are prescribed from then on (the
+                           time of the last reference update) */
+    int *surface_mask;  /* per model surface: constrained components */
+    unsigned *released; /* particles: entries that let them go, or NULL */
+    int *surface_entry; /* per model surface: the entry naming it, or 0 */
+    int *entry_of;      /* particles x 3: the boundary entry whose
+                           prescription holds the component, or -1 */
+    int *slot[3];       /* slot[c][I]: position of I in B_c, or -1 */
     struct component_constraint component[3];
 };
 
@@ -93,6 +95,8 @@ void gsn_constraints_destroy(struct gsn_constraints **constraints)
     }
     free(k->surface_mask);
     free(k->entry_of);
+    free(k->released);
+    free(k->surface_entry);
     free(k);
     *constraints = NULL;
 }
@@ -101,7 +105,8 @@ void gsn_constraints_destroy(struct gsn_constraints **constraints)
  * case order that constrains it (-1: none; any later one must prescribe
  * the same value) and its velocity. */
 static int collect_prescriptions(const struct gsn_model *m,
-                                 const struct gsn_case *c, int *entry_of,
+                                 const struct gsn_case *c,
+                                 const unsigned *released, int *entry_of,
                                  double *velocity_of)
 {
     int n = m->particle_count;
@@ -116,7 +121,8 @@ static int collect_prescriptions(const struct gsn_model *m,
                   "the geometry changed)",
                   c->path, entry->line, entry->name);
         for (int p = 0; p < n; ++p) {
-            if (!gsn_model_particle_on_surface(m, p, surface))
+            if (!gsn_model_particle_on_surface(m, p, surface) ||
+                (released && (released[p] >> b & 1u)))
                 continue;
             for (int k = 0; k < 3; ++k) {
                 if (!entry->fixed[k] && !entry->has_velocity[k])
@@ -396,6 +402,7 @@ static int component_build(struct gsn_constraints *k, int c,
 int gsn_constraints_create(const struct gsn_model *m,
                            const struct gsn_case *given,
                            const struct gsn_shape_rows *values,
+                           const unsigned *released,
                            struct gsn_constraints **out)
 {
     *out = NULL;
@@ -418,10 +425,19 @@ int gsn_constraints_create(const struct gsn_model *m,
     k->ramp = c->time_ramp;
     k->surface_count = m->surface_count;
     k->surface_mask = calloc((size_t)m->surface_count + 1, sizeof(int));
-    GSN_CHECK_GOTO(k->surface_mask, rc, GSN_ERR_MEMORY, done, "out of memory");
-    GSN_CALL_GOTO(collect_prescriptions(m, c, entry_of, velocity_of), rc, done);
+    k->surface_entry = calloc((size_t)m->surface_count + 1, sizeof(int));
+    GSN_CHECK_GOTO(k->surface_mask && k->surface_entry, rc, GSN_ERR_MEMORY,
+                   done, "out of memory");
+    if (released) {
+        k->released = malloc(sizeof(unsigned) * (n ? n : 1));
+        GSN_CHECK_GOTO(k->released, rc, GSN_ERR_MEMORY, done, "out of memory");
+        memcpy(k->released, released, sizeof(unsigned) * n);
+    }
+    GSN_CALL_GOTO(collect_prescriptions(m, c, released, entry_of, velocity_of),
+                  rc, done);
     for (int b = 0; b < c->boundary_count; ++b) {
         int surface = gsn_model_find_surface(m, c->boundaries[b].name);
+        k->surface_entry[surface] = b;
         for (int comp = 0; comp < 3; ++comp)
             if (c->boundaries[b].fixed[comp] ||
                 c->boundaries[b].has_velocity[comp])
@@ -522,6 +538,17 @@ int gsn_constraints_set_velocity(struct gsn_constraints *constraints,
     struct component_constraint *cc = &constraints->component[component];
     cc->velocity[constraints->slot[component][particle]] = velocity;
     return GSN_OK;
+}
+
+int gsn_constraints_facet_mask(const struct gsn_constraints *constraints,
+                               int surface, int owner)
+{
+    int mask = gsn_constraints_surface_mask(constraints, surface);
+    if (mask && constraints->released &&
+        constraints->released[owner] >> constraints->surface_entry[surface] &
+            1u)
+        return 0;
+    return mask;
 }
 
 int gsn_constraints_entry(const struct gsn_constraints *constraints,

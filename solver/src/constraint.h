@@ -56,10 +56,21 @@ int gsn_constraints_ramping(const struct gsn_constraints *constraints,
  * (each entry must name a surface of the model), checks that no particle
  * gets two different prescriptions for one component (a symmetry entry
  * holds the component normal to its plane, gsn_case_resolve_symmetry), and
- * factorizes Lambda_c. values: Psi_I(X_J), one row per particle J. */
+ * factorizes Lambda_c. values: Psi_I(X_J), one row per particle J.
+ * released (NULL: none): per particle, a bit mask of the entries that do
+ * not hold it although it lies on their surface (a rigid body's particle
+ * that has left its base, contact.h). */
 int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
                            const struct gsn_shape_rows *values,
+                           const unsigned *released,
                            struct gsn_constraints **out);
+
+/* The components constrained on a facet of model surface `surface` owned
+ * by particle `owner`: gsn_constraints_surface_mask, or 0 where the
+ * surface's entry has released the owner (a rigid body's particle that
+ * has left its base is free there, and so is the boundary term). */
+int gsn_constraints_facet_mask(const struct gsn_constraints *constraints,
+                               int surface, int owner);
 
 /* Frees; NULL-safe, nulls the handle. */
 void gsn_constraints_destroy(struct gsn_constraints **constraints);

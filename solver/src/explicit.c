@@ -91,7 +91,8 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
                         e->point_mass,
                         e->reference_offset,
                         e->reference_gradient,
-                        e->block_distortion};
+                        e->block_distortion,
+                        e->contact_force};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         free(arrays[i]);
     free(e->point_failed);
@@ -126,10 +127,12 @@ static int build_boundary_masks(struct gsn_explicit *e)
                          sizeof(double)));
     GSN_CALL(alloc_array((void **)&e->boundary_entry_offset, (size_t)n + 1,
                          sizeof(int)));
-    for (int b = 0; b < nb && e->constraints; ++b)
-        e->boundary_point_mask[b] = gsn_constraints_surface_mask(
-            e->constraints,
-            e->model->facet_surface[q->boundary_point_facet[b]]);
+    for (int b = 0; b < nb && e->constraints; ++b) {
+        int facet = q->boundary_point_facet[b];
+        e->boundary_point_mask[b] = gsn_constraints_facet_mask(
+            e->constraints, e->model->facet_surface[facet],
+            e->model->facet_owner[facet]);
+    }
     /* The entries of constrained boundary points by particle, in boundary
      * point order: boundary_term gathers them in parallel and adds in the
      * order of the serial scatter. */
@@ -1016,6 +1019,41 @@ static int report_failure(const struct gsn_explicit *e, const char *what)
     return GSN_OK;
 }
 
+/* The rigid bodies' penalty forces at time t on the present coefficients
+ * (contact.h); nothing without bodies. */
+static int contact_forces(struct gsn_explicit *e, double t)
+{
+    if (!e->contact)
+        return GSN_OK;
+    return gsn_contact_forces(
+        e->contact, e->constraints, e->quadrature->rk->position,
+        &e->quadrature->particle_values, e->displacement, e->mass, e->dt, t,
+        e->quadrature->rk->max_radius, e->contact_force, e->contact_resultant,
+        &e->contact_count);
+}
+
+/* Component i (3 I + k) of the contact force, 0 without bodies. */
+static inline double contact_force(const struct gsn_explicit *e, int i)
+{
+    return e->contact ? e->contact_force[i] : 0.0;
+}
+
+int gsn_explicit_set_contact(struct gsn_explicit *e,
+                             const struct gsn_contact *contact)
+{
+    e->contact = contact;
+    if (!contact)
+        return GSN_OK;
+    if (!e->contact_force)
+        GSN_CALL(alloc_array((void **)&e->contact_force,
+                             3 * (size_t)e->particle_count, sizeof(double)));
+    GSN_CALL(contact_forces(e, e->time));
+    for (int i = 0; i < 3 * e->particle_count; ++i)
+        e->previous_external[i] = e->f_ext[i] + e->reaction[i] +
+                                  e->boundary_force[i] + e->contact_force[i];
+    return GSN_OK;
+}
+
 int gsn_explicit_refresh(struct gsn_explicit *e)
 {
     const double *w = e->quadrature->point_weight;
@@ -1037,9 +1075,10 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
     }
     if (!e->skip_boundary_term)
         boundary_term(e, e->boundary_force);
+    GSN_CALL(contact_forces(e, e->time));
     for (int i = 0; i < 3 * e->particle_count; ++i)
-        e->previous_external[i] =
-            e->f_ext[i] + e->reaction[i] + e->boundary_force[i];
+        e->previous_external[i] = e->f_ext[i] + e->reaction[i] +
+                                  e->boundary_force[i] + contact_force(e, i);
     return GSN_OK;
 }
 
@@ -1175,7 +1214,7 @@ static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
             int at = 3 * i + k;
             if (!e->skip_boundary_term)
                 e->f_int[at] -= e->boundary_force[at];
-            double f = e->f_ext[at] - e->f_int[at];
+            double f = e->f_ext[at] + contact_force(e, at) - e->f_int[at];
             if (e->damping_local > 0.0) {
                 double damping = 0.0;
                 if (!(e->constrained[i] & (1 << k))) {
@@ -1222,10 +1261,11 @@ static void reactions_and_energies(struct gsn_explicit *e, int i0, int i1,
             int at = 3 * i + k;
             e->reaction[at] = e->constrained[i] & (1 << k)
                                   ? e->mass[i] * e->acceleration[at] -
-                                        e->f_ext[at] + e->f_int[at]
+                                        e->f_ext[at] - contact_force(e, at) +
+                                        e->f_int[at]
                                   : 0.0;
-            double total =
-                e->f_ext[at] + e->reaction[at] + e->boundary_force[at];
+            double total = e->f_ext[at] + contact_force(e, at) +
+                           e->reaction[at] + e->boundary_force[at];
             sums->external +=
                 0.5 * (e->previous_external[at] + total) *
                 (e->displacement[at] - e->previous_displacement[at]);
@@ -1272,6 +1312,8 @@ int gsn_explicit_step(struct gsn_explicit *e)
 
     GSN_CALL(gsn_explicit_update_stress(e));
     phase_end(e, GSN_PHASE_PASS, &mark);
+    GSN_CALL(contact_forces(e, t1));
+    phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
 
     if (!e->skip_boundary_term)
         boundary_term(e, e->boundary_force);

@@ -51,6 +51,7 @@
 #define GEOSCNI_EXPLICIT_H
 
 #include "constraint.h"
+#include "contact.h"
 #include "geoscni/case.h"
 #include "geoscni/kernels.h"
 #include "material.h"
@@ -180,6 +181,15 @@ struct gsn_explicit {
                                      the points failed in the step and the
                                      first of them */
     int interpolation_iterations; /* of the velocity at the last carry-over */
+
+    /* Rigid bodies (contact.h), borrowed, NULL without: their penalty
+     * forces on the coefficients at the present step (n x 3, N; an
+     * external force: in a, the reactions and W_ext), their total on the
+     * soil by boundary entry, and the particles inside a body. */
+    const struct gsn_contact *contact;
+    double *contact_force;
+    double contact_resultant[GSN_MAX_BOUNDARIES][3];
+    int contact_count;
 };
 
 /* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped
@@ -193,6 +203,11 @@ int gsn_explicit_create(const struct gsn_model *m,
 
 /* Frees; NULL-safe, nulls the handle. */
 void gsn_explicit_destroy(struct gsn_explicit **e);
+
+/* Gives the loop its rigid bodies (NULL: none) and their forces on the
+ * present state. */
+int gsn_explicit_set_contact(struct gsn_explicit *e,
+                             const struct gsn_contact *contact);
 
 /* Carries the state of `from` onto `to`, a loop built (gsn_explicit_create)
  * on the current positions of from's particles, X_ref + u(X_ref): the

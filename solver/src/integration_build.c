@@ -510,9 +510,13 @@ static int check_model(const struct gsn_model *m)
     return GSN_OK;
 }
 
+/* spacing_floor (NULL: none): the least h_I of each particle (the support
+ * repair below); failure_point: where an ill-conditioned point is
+ * reported. */
 static int quadrature_build(const struct gsn_model *m,
                             const struct gsn_kernel_options *o,
                             const double *background, int background_count,
+                            const double *spacing_floor, double *failure_point,
                             struct gsn_quadrature *q)
 {
     int n = m->particle_count;
@@ -534,11 +538,14 @@ static int quadrature_build(const struct gsn_model *m,
     GSN_CHECK(spacing, GSN_ERR_MEMORY, "cannot allocate %d doubles", n);
     int rc = gsn_rk_spacing_from_facets(
         m, o->cover_neighbours ? o->support : 0.0, spacing);
+    for (int p = 0; p < n && spacing_floor; ++p)
+        spacing[p] = fmax(spacing[p], spacing_floor[p]);
     if (rc == GSN_OK)
         rc = gsn_rk_create(n, m->position, spacing, o->support, o->basis_order,
                            &q->rk);
     free(spacing);
     GSN_CALL(rc);
+    q->rk->failure_point = failure_point;
 
     /* Psi_I(X_J), with gradients for DNI */
     int dni = o->integration == GSN_INTEGRATION_DNI;
@@ -597,6 +604,79 @@ static int quadrature_build(const struct gsn_model *m,
     return GSN_OK;
 }
 
+/* Ill-conditioned points an updated reference's build repairs at most. */
+enum { SUPPORT_REPAIRS = 32 };
+/* A repaired point is covered by at least as many particles as the basis
+ * has terms and REPAIR_COVER_EXTRA more, and by as many more of the
+ * nearest as it takes for them not to lie in one plane (the base of a
+ * footing, a face: their moment matrix is singular whatever their
+ * number), at most REPAIR_MOST; each reaches it at 1 / REPAIR_REACH of its
+ * support (the cubic spline there is 0.05 of its peak: a point at the
+ * support's edge would weigh nothing). */
+enum { REPAIR_COVER_EXTRA = 4, REPAIR_MOST = 64 };
+#define REPAIR_REACH 1.5
+/* Offsets whose second moment has det / (trace / 3)^3 above this span
+ * space (1 for a sphere's, 0 for a plane's). */
+#define REPAIR_SPREAD 1e-3
+
+/* det / (trace / 3)^3 of the second moment of x - mean over the points
+ * `index[0..count)` of positions X. */
+static double spread(const double *X, const int *index, int count)
+{
+    double mean[3] = {0, 0, 0}, M[9] = {0};
+    for (int k = 0; k < count; ++k)
+        for (int a = 0; a < 3; ++a)
+            mean[a] += X[3 * (size_t)index[k] + a] / count;
+    for (int k = 0; k < count; ++k)
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b)
+                M[3 * a + b] += (X[3 * (size_t)index[k] + a] - mean[a]) *
+                                (X[3 * (size_t)index[k] + b] - mean[b]);
+    double det = M[0] * (M[4] * M[8] - M[5] * M[7]) -
+                 M[1] * (M[3] * M[8] - M[5] * M[6]) +
+                 M[2] * (M[3] * M[7] - M[4] * M[6]);
+    double third = (M[0] + M[4] + M[8]) / 3.0;
+    return third > 0.0 ? det / (third * third * third) : 0.0;
+}
+
+/* Raises floor (the least h_I) of the particles nearest to x (see above)
+ * so that their kernels (box half-width support h_I) reach x within
+ * 1 / REPAIR_REACH of it. */
+static int repair_supports(const struct gsn_model *m,
+                           const struct gsn_kernel_options *o,
+                           const double x[3], double *floor)
+{
+    int want = (o->basis_order == 2 ? 10 : 4) + REPAIR_COVER_EXTRA;
+    int nearest[REPAIR_MOST];
+    double distance[REPAIR_MOST];
+    int found = 0;
+    for (int i = 0; i < m->particle_count; ++i) {
+        const double *X = &m->position[3 * (size_t)i];
+        double d =
+            fmax(fabs(X[0] - x[0]), fmax(fabs(X[1] - x[1]), fabs(X[2] - x[2])));
+        if (found == REPAIR_MOST && d >= distance[found - 1])
+            continue;
+        int k = found < REPAIR_MOST ? found++ : found - 1;
+        while (k > 0 && distance[k - 1] > d) {
+            distance[k] = distance[k - 1];
+            nearest[k] = nearest[k - 1];
+            --k;
+        }
+        distance[k] = d;
+        nearest[k] = i;
+    }
+    GSN_CHECK(found >= want, GSN_ERR_NUMERICAL,
+              "the point (%g, %g, %g) cannot be covered: %d particles", x[0],
+              x[1], x[2], m->particle_count);
+    int count = want;
+    while (count < found && spread(m->position, nearest, count) < REPAIR_SPREAD)
+        ++count;
+    for (int k = 0; k < count; ++k)
+        floor[nearest[k]] =
+            fmax(floor[nearest[k]], distance[k] * REPAIR_REACH / o->support);
+    return GSN_OK;
+}
+
 int gsn_quadrature_create(const struct gsn_model *m,
                           const struct gsn_kernel_options *options,
                           const double *background_cells,
@@ -604,14 +684,36 @@ int gsn_quadrature_create(const struct gsn_model *m,
                           struct gsn_quadrature **out)
 {
     *out = NULL;
-    struct gsn_quadrature *q = calloc(1, sizeof *q);
-    GSN_CHECK(q, GSN_ERR_MEMORY, "cannot allocate the quadrature");
-    int rc = quadrature_build(m, options, background_cells,
-                              background_cell_count, q);
-    if (rc != GSN_OK) {
+    double failure[3] = {NAN, NAN, NAN}, *floor = NULL;
+    int rc = GSN_OK;
+    for (int attempt = 0;; ++attempt) {
+        struct gsn_quadrature *q = calloc(1, sizeof *q);
+        GSN_CHECK_GOTO(q, rc, GSN_ERR_MEMORY, done,
+                       "cannot allocate the quadrature");
+        rc = quadrature_build(m, options, background_cells,
+                              background_cell_count, floor, failure, q);
+        if (rc == GSN_OK) {
+            q->rk->failure_point = NULL;
+            *out = q;
+            break;
+        }
         gsn_quadrature_destroy(&q);
-        GSN_CALL(rc);
+        /* an updated reference: supports raised to cover the point that
+         * failed, once per such point (docs/solver.md, "Support repair") */
+        if (rc != GSN_ERR_NUMERICAL || !options->cover_neighbours ||
+            attempt == SUPPORT_REPAIRS || !isfinite(failure[0]))
+            break;
+        if (!floor) {
+            floor = calloc((size_t)m->particle_count + 1, sizeof *floor);
+            GSN_CHECK_GOTO(floor, rc, GSN_ERR_MEMORY, done,
+                           "cannot allocate %d doubles", m->particle_count);
+        }
+        GSN_CALL_GOTO(repair_supports(m, options, failure, floor), rc, done);
+        failure[0] = NAN;
+        gsn_error_clear();
     }
-    *out = q;
+done:
+    free(floor);
+    GSN_CALL(rc);
     return GSN_OK;
 }

@@ -32,6 +32,7 @@ int kernel_evaluate(const struct gsn_rk *rk, const double *x, int want_gradient,
                  "the kernel support",
                  what, which, x[0], x[1], x[2], condition,
                  GSN_RK_CONDITION_LIMIT, *count, rk->basis_size);
+        memcpy(t->failed_at, x, sizeof t->failed_at);
         return GSN_ERR_NUMERICAL;
     }
     return GSN_OK;
@@ -146,6 +147,10 @@ int kernel_rows_build(const struct gsn_rk *rk, int row_count, kernel_row_fn fn,
         if (fail_code[i] != GSN_OK &&
             (worst < 0 || fail_row[i] < fail_row[worst]))
             worst = i;
+    if (worst >= 0 && fail_code[worst] == GSN_ERR_NUMERICAL &&
+        rk->failure_point)
+        memcpy(rk->failure_point, team[worst].failed_at,
+               sizeof team[worst].failed_at);
     GSN_CHECK_GOTO(worst < 0, rc, worst >= 0 ? fail_code[worst] : GSN_OK, done,
                    "%s", worst >= 0 ? team[worst].message : "");
 

@@ -23,6 +23,7 @@ struct kernel_thread {
     double *out_value;
     double *out_gradient;
     char message[256];
+    double failed_at[3]; /* the point of a GSN_ERR_NUMERICAL failure */
 };
 
 /* Finds the particles covering x and evaluates Psi (and grad Psi if

@@ -31,8 +31,9 @@ const char *gsn_reference_reason_name(enum gsn_reference_reason reason)
 /* The shape functions, integration, constraints (displacements prescribed
  * from epoch on) and the loop at rest on the cells of model m. */
 static int build(const struct gsn_model *m, const struct gsn_case *c,
-                 const struct gsn_material_model *material, double dt,
-                 double epoch, struct gsn_quadrature **quadrature,
+                 const struct gsn_material_model *material,
+                 const struct gsn_contact *contact, double dt, double epoch,
+                 struct gsn_quadrature **quadrature,
                  struct gsn_constraints **constraints,
                  struct gsn_explicit **loop,
                  struct gsn_reference_report *report)
@@ -45,8 +46,16 @@ static int build(const struct gsn_model *m, const struct gsn_case *c,
     double t0 = omp_get_wtime();
     GSN_CALL(gsn_quadrature_create(m, &kernel, NULL, 0, quadrature));
     double t1 = omp_get_wtime();
-    GSN_CALL(gsn_constraints_create(m, c, &(*quadrature)->particle_values,
-                                    constraints));
+    unsigned *released = NULL;
+    if (contact) {
+        released = calloc((size_t)m->particle_count + 1, sizeof *released);
+        GSN_CHECK(released, GSN_ERR_MEMORY, "out of memory");
+        gsn_contact_release(contact, m, epoch, released);
+    }
+    int rc = gsn_constraints_create(m, c, &(*quadrature)->particle_values,
+                                    released, constraints);
+    free(released);
+    GSN_CALL(rc);
     gsn_constraints_set_epoch(*constraints, epoch);
     double t2 = omp_get_wtime();
     GSN_CALL(gsn_explicit_create(m, *quadrature, material, *constraints, c, dt,
@@ -56,6 +65,7 @@ static int build(const struct gsn_model *m, const struct gsn_case *c,
         report->seconds_constraints = t2 - t1;
         report->seconds_loop = omp_get_wtime() - t2;
     }
+    GSN_CALL(gsn_explicit_set_contact(*loop, contact));
     (*loop)->allow_failure = !c->small_strain;
     (*loop)->track_distortion = c->reference_update;
     /* The loop reads its own packed copy of the gradient rows
@@ -96,7 +106,9 @@ int gsn_reference_create(const struct gsn_model *original,
     int rc = original->tetrahedron_count > 0 ? gsn_body_copy(&mesh, &r->body)
                                              : GSN_OK;
     if (rc == GSN_OK)
-        rc = build(original, c, material, dt, 0.0, &r->quadrature,
+        rc = gsn_contact_create(original, c, &r->contact);
+    if (rc == GSN_OK)
+        rc = build(original, c, material, r->contact, dt, 0.0, &r->quadrature,
                    &r->constraints, &r->loop, NULL);
     if (rc != GSN_OK) {
         gsn_reference_destroy(&r);
@@ -129,6 +141,7 @@ void gsn_reference_destroy(struct gsn_reference **handle)
         return;
     struct gsn_reference *r = *handle;
     discretization_free(&r->cells, &r->quadrature, &r->constraints, &r->loop);
+    gsn_contact_destroy(&r->contact);
     gsn_body_free(&r->body);
     free(r);
     *handle = NULL;
@@ -227,8 +240,8 @@ static int rebuild(struct gsn_reference *r, const double *x,
     report->tetrahedra_only = options.tetrahedra_only;
     GSN_CALL_GOTO(rc, rc, fail);
     report->seconds_cells = omp_get_wtime() - t0;
-    GSN_CALL_GOTO(build(cells, r->c, r->material, old->dt, time, &quadrature,
-                        &constraints, &loop, report),
+    GSN_CALL_GOTO(build(cells, r->c, r->material, r->contact, old->dt, time,
+                        &quadrature, &constraints, &loop, report),
                   rc, fail);
     double t_state = omp_get_wtime();
     for (size_t i = 0; i < 3 * (size_t)n; ++i)

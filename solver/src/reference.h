@@ -22,6 +22,7 @@
 #define GEOSCNI_REFERENCE_H
 
 #include "constraint.h"
+#include "contact.h"
 #include "explicit.h"
 #include "geoscni/case.h"
 #include "geoscni/cells.h"
@@ -78,6 +79,8 @@ struct gsn_reference {
     const struct gsn_model *model; /* original or cells */
     struct gsn_quadrature *quadrature;
     struct gsn_constraints *constraints;
+    struct gsn_contact *contact; /* the rigid bodies, NULL without: built
+                                    once on `original`, kept by updates */
     struct gsn_explicit *loop;
     int update_count;
     double time;        /* s, of the present reference */

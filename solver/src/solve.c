@@ -256,6 +256,10 @@ static int write_history_row(struct run *r)
                 if (gsn_constraints_entry(r->reference->constraints,
                                           set->particle[s], k) == b)
                     force[k] += e->reaction[3 * set->particle[s] + k];
+        /* a rigid body: the force it puts on the soil by contact too */
+        if (e->contact && r->c->boundaries[b].rigid)
+            for (int k = 0; k < 3; ++k)
+                force[k] += e->contact_resultant[b][k];
         /* a traction entry: the force it applies, ramped as applied */
         for (int k = 0; k < 3; ++k)
             force[k] += e->load_factor * r->traction_force[b][k];

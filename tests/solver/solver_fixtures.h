@@ -143,8 +143,9 @@ static inline int fixture_solver_from_cells(const struct gsn_case *c, double dt,
         rc = gsn_material_model_create(gsn_material_name_for_case(&c->material),
                                        &c->material, &s->material);
     if (rc == GSN_OK && c->boundary_count > 0)
-        rc = gsn_constraints_create(
-            &s->model, c, &s->quadrature->particle_values, &s->constraints);
+        rc = gsn_constraints_create(&s->model, c,
+                                    &s->quadrature->particle_values, NULL,
+                                    &s->constraints);
     if (rc == GSN_OK)
         rc = gsn_explicit_create(&s->model, s->quadrature, s->material,
                                  s->constraints, c, dt, &s->loop);

@@ -11,7 +11,15 @@
  *   new cells (the integration constraint, seed eq. (24));
  * - a pre-stressed block turned rigidly through a full revolution with an
  *   update every 50 of its 628 steps keeps sigma = R sigma0 R^T and gains no
- *   equivalent strain (the paper's soil), as without updates. */
+ *   equivalent strain (the paper's soil), as without updates;
+ * - a particle carried out past the old boundary (soil flowing around a
+ *   footing's corner) is still body when the body is made again
+ *   (gsn_body_remesh: the winding number of the old boundary alone left it
+ *   out, and its nodal domain reached outside the body);
+ * - a layer pulled ten spacings off the block (cells longer than the
+ *   covering supports reach) gets shape functions on an updated reference:
+ *   the supports are repaired where a point is not covered, and every row
+ *   reproduces 1 and x to round-off; without the repair the build fails. */
 #include "geoscni/case.h"
 #include "geoscni/tensor.h"
 #include "reference.h"
@@ -20,6 +28,7 @@
 #include "testing.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 static const int COUNT[3] = {7, 7, 7};
 static const double LO[3] = {0, 0, 0}, HI[3] = {1, 1, 1};
@@ -357,9 +366,137 @@ static void test_failed_point_energy(void)
     block_destroy(&b);
 }
 
+/* The box's lattice spacing (x), and the largest z of its particles. */
+static double box_spacing(void)
+{
+    return (HI[0] - LO[0]) / (COUNT[0] - 1);
+}
+
+static double top_z(const struct gsn_model *m)
+{
+    double z = -INFINITY;
+    for (int i = 0; i < m->particle_count; ++i)
+        z = fmax(z, m->position[3 * i + 2]);
+    return z;
+}
+
+static void test_remesh_keeps_leaked_particle(void)
+{
+    struct gsn_model m;
+    TEST_INT(fixture_box(COUNT, LO, HI, JITTER, 1, &m), GSN_OK);
+    int n = m.particle_count;
+    double h = box_spacing(), top = top_z(&m);
+    double *x = malloc(sizeof(double) * 3 * (size_t)n);
+    memcpy(x, m.position, sizeof(double) * 3 * (size_t)n);
+    /* the particle of the second layer from the top nearest to the top
+     * face's centre, carried 0.3 h above the top */
+    int leak = -1;
+    double best = INFINITY;
+    for (int i = 0; i < n; ++i) {
+        const double *X = &m.position[3 * i];
+        double d = hypot(X[0] - 0.5, X[1] - 0.5) + fabs(X[2] - (top - h));
+        if (d < best) {
+            best = d;
+            leak = i;
+        }
+    }
+    x[3 * leak + 2] = top + 0.3 * h;
+    const struct gsn_body old = {m.tetrahedron_count, m.tetrahedra,
+                                 m.tetrahedron_face};
+    struct gsn_body body;
+    TEST_INT(gsn_body_remesh(&old, x, n, &body), GSN_OK);
+    char *used = calloc((size_t)n, 1);
+    for (int t = 0; t < 4 * body.tetrahedron_count; ++t)
+        used[body.tetrahedra[t]] = 1;
+    int missing = 0;
+    for (int i = 0; i < n; ++i)
+        missing += !used[i];
+    printf("remesh: particle %d carried 0.3 h past the top: %s; %d particles "
+           "outside every tetrahedron\n",
+           leak, used[leak] ? "body" : "left out", missing);
+    TEST_TRUE(used[leak] && missing == 0);
+    /* and its nodal domain is clipped to the new body */
+    struct gsn_cells_options options = {1, 0, 0};
+    struct gsn_model cells;
+    memset(&cells, 0, sizeof cells);
+    int rc = gsn_cells_model_at(&m, x, &body, &options, &cells, NULL);
+    if (rc != GSN_OK)
+        gsn_error_print(stderr);
+    TEST_INT(rc, GSN_OK);
+    TEST_TRUE(rc != GSN_OK || cells.volume[leak] > 0.0);
+    gsn_model_free(&cells);
+    gsn_body_free(&body);
+    free(used);
+    free(x);
+    gsn_model_free(&m);
+}
+
+static void test_support_repair(void)
+{
+    struct gsn_model m;
+    TEST_INT(fixture_box(COUNT, LO, HI, JITTER, 1, &m), GSN_OK);
+    int n = m.particle_count;
+    double h = box_spacing(), top = top_z(&m);
+    double *x = malloc(sizeof(double) * 3 * (size_t)n);
+    memcpy(x, m.position, sizeof(double) * 3 * (size_t)n);
+    /* the top layer pulled 9 spacings up: its cells and their neighbours'
+     * are 10 h long, past the covering supports (at most 2 x 1.5 h) */
+    for (int i = 0; i < n; ++i)
+        if (x[3 * i + 2] > top - 0.5 * h)
+            x[3 * i + 2] += 9.0 * h;
+    struct gsn_cells_options options = {1, 0, 0};
+    struct gsn_model cells;
+    memset(&cells, 0, sizeof cells);
+    TEST_INT(gsn_cells_model_at(&m, x, NULL, &options, &cells, NULL), GSN_OK);
+    struct gsn_case c;
+    TEST_INT(gsn_case_load("cases/block_elastic.yaml", &c), GSN_OK);
+    struct gsn_kernel_options kernel;
+    gsn_kernel_options_from_case(&c, &kernel);
+    struct gsn_quadrature *q = NULL;
+    kernel.cover_neighbours = 0;
+    TEST_INT(gsn_quadrature_create(&cells, &kernel, NULL, 0, &q),
+             GSN_ERR_NUMERICAL);
+    gsn_error_clear();
+    kernel.cover_neighbours = 1;
+    int rc = gsn_quadrature_create(&cells, &kernel, NULL, 0, &q);
+    if (rc != GSN_OK)
+        gsn_error_print(stderr);
+    TEST_INT(rc, GSN_OK);
+    /* reproducing conditions at the particles and the boundary points */
+    double worst = 0.0;
+    const struct gsn_shape_rows *sets[2] = {&q->particle_values,
+                                            &q->boundary_values};
+    const double *where[2] = {cells.position, q->boundary_point_position};
+    for (int s = 0; s < 2 && rc == GSN_OK; ++s)
+        for (int r = 0; r < sets[s]->row_count; ++r) {
+            double one = -1.0, moment[3];
+            for (int k = 0; k < 3; ++k)
+                moment[k] = -where[s][3 * r + k];
+            for (int e = sets[s]->offset[r]; e < sets[s]->offset[r + 1]; ++e) {
+                one += sets[s]->value[e];
+                for (int k = 0; k < 3; ++k)
+                    moment[k] += sets[s]->value[e] *
+                                 cells.position[3 * sets[s]->index[e] + k];
+            }
+            worst = fmax(worst, fabs(one));
+            for (int k = 0; k < 3; ++k)
+                worst = fmax(worst, fabs(moment[k]) / h);
+        }
+    printf("support repair: a layer pulled 9 h off; worst reproducing error "
+           "%.2g (1 and x / h)\n",
+           worst);
+    TEST_TRUE(worst < 1e-9);
+    gsn_quadrature_destroy(&q);
+    gsn_model_free(&cells);
+    free(x);
+    gsn_model_free(&m);
+}
+
 int main(void)
 {
     test_begin();
+    test_remesh_keeps_leaked_particle();
+    test_support_repair();
     test_uniform_update();
     test_rotation_with_updates();
     test_failed_point_energy();

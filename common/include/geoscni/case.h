@@ -65,6 +65,10 @@ struct gsn_boundary {
     int has_traction[3]; /* set when the entry has a traction */
     double traction[3];  /* dead load per reference area, Pa */
     int symmetry; /* symmetry plane: the normal component is held (solver) */
+    int rigid;    /* the surface is the face of a rigid body moving at the
+                     prescribed velocity: the body is the surface swept
+                     against the motion, and no other particle may enter it
+                     (solver/src/contact.h) */
 };
 
 /* Local refinement of the particle spacing (particles.refine), passed to

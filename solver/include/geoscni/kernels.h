@@ -61,6 +61,10 @@ struct gsn_rk {
     double *position;
     double *radius; /* a_I, m */
     double max_radius;
+    /* where set (not NULL): kernel_rows_build writes there the position
+     * of the ill-conditioned point it reports (the support repair of an
+     * updated reference, integration_build.c) */
+    double *failure_point;
     double grid_origin[3];
     double cell_size;
     int grid_size[3];
