@@ -6,8 +6,11 @@
 # (smooth: x free under the footing; rough: x held). Prints q / s_u at every
 # 0.05 B of settlement (q the footing's net force over its area B/2 x the
 # slab thickness 2 h of the half model; s_u = 1 kPa) and where each run
-# ended. geoscni run skips a case whose results are up to date.
-# Usage: bench/deep_penetration.sh [BUILD_DIR] [OUT] [SPACINGS] [FOOTINGS] [UPDATE]
+# ended. geoscni run skips a case whose results are up to date. The footing
+# is a rigid body (rigid: true: side walls the soil cannot pass, and a
+# smooth footing's particles that slide out past its edge let go;
+# docs/solver.md, "Rigid bodies"); RIGID=0 makes it its base alone.
+# Usage: [RIGID=0] bench/deep_penetration.sh [BUILD_DIR] [OUT] [SPACINGS] [FOOTINGS] [UPDATE]
 #        (default build, out/penetration, "0.2 0.1", "smooth rough",
 #         "{strain: 0.2, min_steps: 20}")
 set -eu
@@ -17,6 +20,7 @@ out=${2:-$root/out/penetration}
 spacings=${3:-0.2 0.1}
 footings=${4:-smooth rough}
 update=${5:-"{strain: 0.2, min_steps: 20}"}
+rigid=$([ "${RIGID:-1}" = 0 ] || echo ", rigid: true")
 geoscni=$root/$build/bin/geoscni
 [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
 mkdir -p "$out"
@@ -34,7 +38,7 @@ for h in $spacings; do
             echo "reference_update: $update"
             sed -e "s|^geometry: *|geometry: $root/geometries/|" \
                 -e "s|^\( *spacing:\).*|\1 $h|" \
-                -e "s|^\( *footing:\).*|\1 {velocity: $velocity}|" "$source_case"
+                -e "s|^\( *footing:\).*|\1 {velocity: $velocity$rigid}|" "$source_case"
         } >"$out/$name.yaml"
         t0=$(date +%s)
         status=0

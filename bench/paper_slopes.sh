@@ -5,7 +5,9 @@
 # what the rate changes), the stable step chosen by the solver, cut at
 # SETTLEMENT metres. Times each stage and prints particles, steps, the
 # footing's peak load and where it occurs.
-# Usage: bench/paper_slopes.sh [BUILD_DIR] [OUT] [FACTOR] [SETTLEMENT] [CASES]
+# RIGID=1 makes the footing a rigid body the soil cannot enter (rigid: true,
+# docs/solver.md "Rigid bodies").
+# Usage: [RIGID=1] bench/paper_slopes.sh [BUILD_DIR] [OUT] [FACTOR] [SETTLEMENT] [CASES]
 #        (default build, out/paper, 5, 1.0, "slope_I slope_II")
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -14,6 +16,7 @@ out=${2:-$root/out/paper}
 factor=${3:-5}
 settlement=${4:-1.0}
 cases=${5:-slope_I slope_II}
+rigid=${RIGID:+, rigid: true}
 geoscni=$root/$build/bin/geoscni
 [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
 mkdir -p "$out"
@@ -28,7 +31,7 @@ for name in $cases; do
     mkdir -p "$out/$name"
     case_file=$out/$name/$name.yaml
     sed -e "s|^geometry: *|geometry: $root/geometries/|" \
-        -e "s|velocity: \[null, null, -$speed\]|velocity: [null, null, -$v]|" \
+        -e "s|velocity: \[null, null, -$speed\]|velocity: [null, null, -$v]$rigid|" \
         -e "s|^\( *end:\).*|\1 $end|" -e "s|^\( *step:\).*|\1 auto|" \
         -e "s|^\( *every:\).*|\1 $every|" "$source_case" >"$case_file"
     echo "$name: footing at $v m/s to $settlement m ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"

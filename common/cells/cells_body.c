@@ -21,8 +21,11 @@
  * largest nearest-neighbour distance of its nodes is body wherever it
  * lies (an alpha shape): so is the soil that has flowed past the old
  * boundary (around a footing's corner, where the old surface is stretched
- * over it). A cubic lattice of spacing h has circumradii 0.87 h. */
-#define GSN_BODY_ALPHA 1.0
+ * over it). Chosen on the deep penetration (docs/deep_penetration.md): 0.6
+ * still left that soil out (B/10 rough ended at 0.65 B), 1.0 and 1.2
+ * bridged the gap beside the footing (B/5 rough 0.80 and 0.73 B against
+ * 1 B); 0.8: 1 B and 0.87 B. A cubic lattice's circumradius is 0.87 h. */
+#define GSN_BODY_ALPHA 0.8
 
 const int gsn_cells_tetrahedron_face[4][3] = {
     {1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};

@@ -557,6 +557,15 @@ int gsn_constraints_entry(const struct gsn_constraints *constraints,
     return constraints->entry_of[3 * (size_t)particle + component];
 }
 
+int gsn_constraints_holds(const struct gsn_constraints *constraints,
+                          int particle, int entry)
+{
+    for (int k = 0; k < 3; ++k)
+        if (gsn_constraints_entry(constraints, particle, k) == entry)
+            return 1;
+    return 0;
+}
+
 int gsn_constraints_surface_mask(const struct gsn_constraints *constraints,
                                  int surface)
 {

@@ -101,6 +101,10 @@ int gsn_constraints_set_velocity(struct gsn_constraints *constraints,
 int gsn_constraints_entry(const struct gsn_constraints *constraints,
                           int particle, int component);
 
+/* 1 if boundary entry `entry` holds some component of the particle. */
+int gsn_constraints_holds(const struct gsn_constraints *constraints,
+                          int particle, int entry);
+
 /* Components constrained on model surface `surface` by the case's
  * boundary entries, as a bit mask (bit k: component k); 0 if none. */
 int gsn_constraints_surface_mask(const struct gsn_constraints *constraints,

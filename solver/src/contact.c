@@ -441,17 +441,6 @@ void gsn_contact_release(const struct gsn_contact *contact,
     }
 }
 
-/* 1 if the constraints hold particle i to body b's own prescription. */
-static int held_by(const struct gsn_constraints *constraints,
-                   const struct body *body, int i)
-{
-    for (int k = 0; k < 3; ++k)
-        if (constraints &&
-            gsn_constraints_entry(constraints, i, k) == body->entry)
-            return 1;
-    return 0;
-}
-
 int gsn_contact_forces(const struct gsn_contact *contact,
                        const struct gsn_constraints *constraints,
                        const double *position,
@@ -497,7 +486,8 @@ int gsn_contact_forces(const struct gsn_contact *contact,
                                 displacement[3 * (size_t)values->index[e] + k];
                 exact = 1;
             }
-            if (held_by(constraints, body, i))
+            if (constraints &&
+                gsn_constraints_holds(constraints, i, body->entry))
                 continue;
             for (int k = 0; k < 3; ++k)
                 y[k] = x[k] - moved[b][k];

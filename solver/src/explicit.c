@@ -241,8 +241,10 @@ void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
             continue;
         double t[3];
         boundary_traction(e, b, t);
+        /* a released particle's facets hold nothing (constraint.h) */
+        int held = e->constraints ? mask & e->boundary_point_mask[b] : mask;
         for (int i = 0; i < 3; ++i)
-            if (mask & (1 << i))
+            if (held & (1 << i))
                 force[i] += t[i] * q->boundary_point_weight[b];
     }
 }

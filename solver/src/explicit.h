@@ -285,7 +285,8 @@ int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt);
 
 /* Resultant of the tractions on the boundary facets of model surface
  * `surface` for the components in mask (N), in the current state: on a
- * constrained surface, the force the supports apply to the body. */
+ * constrained surface, the force the supports apply to the body (the
+ * facets of particles a rigid body has released left out). */
 void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
                                 int mask, double force[3]);
 

@@ -283,52 +283,56 @@ int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
     return 0;
 }
 
-static int grid_cell(const struct gsn_rk *rk, int k, double x)
+static int grid_cell(const struct gsn_rk_grid *g, int k, double x)
 {
-    double c = floor((x - rk->grid_origin[k]) / rk->cell_size);
+    double c = floor((x - g->origin[k]) / g->cell_size);
     if (c < 0.0)
         return 0;
-    if (c > rk->grid_size[k] - 1)
-        return rk->grid_size[k] - 1;
+    if (c > g->size[k] - 1)
+        return g->size[k] - 1;
     return (int)c;
 }
 
 /* The index of the grid cell holding x (clamped to the grid). */
-static size_t grid_index(const struct gsn_rk *rk, const double x[3])
+static size_t grid_index(const struct gsn_rk_grid *g, const double x[3])
 {
-    return (size_t)grid_cell(rk, 0, x[0]) +
-           (size_t)rk->grid_size[0] *
-               ((size_t)grid_cell(rk, 1, x[1]) +
-                (size_t)rk->grid_size[1] * grid_cell(rk, 2, x[2]));
+    return (size_t)grid_cell(g, 0, x[0]) +
+           (size_t)g->size[0] * ((size_t)grid_cell(g, 1, x[1]) +
+                                 (size_t)g->size[1] * grid_cell(g, 2, x[2]));
 }
 
 int gsn_rk_neighbours(const struct gsn_rk *rk, const double x[3], int capacity,
                       int *index)
 {
-    int lo[3], hi[3], count = 0;
-    for (int k = 0; k < 3; ++k) {
-        lo[k] = grid_cell(rk, k, x[k] - rk->max_radius);
-        hi[k] = grid_cell(rk, k, x[k] + rk->max_radius);
-    }
-    for (int c2 = lo[2]; c2 <= hi[2]; ++c2)
-        for (int c1 = lo[1]; c1 <= hi[1]; ++c1)
-            for (int c0 = lo[0]; c0 <= hi[0]; ++c0) {
-                size_t cell = (size_t)c0 +
-                              (size_t)rk->grid_size[0] *
-                                  ((size_t)c1 + (size_t)rk->grid_size[1] * c2);
-                const double *data = rk->cell_data;
-                for (int e = rk->cell_offset[cell];
-                     e < rk->cell_offset[cell + 1]; ++e) {
-                    const double *xp = data + 4 * (size_t)e;
-                    double a = xp[3];
-                    if (fabs(x[0] - xp[0]) < a && fabs(x[1] - xp[1]) < a &&
-                        fabs(x[2] - xp[2]) < a) {
-                        if (count < capacity)
-                            index[count] = rk->cell_particle[e];
-                        ++count;
+    int count = 0;
+    for (int level = 0; level < 2; ++level) {
+        const struct gsn_rk_grid *g = &rk->grid[level];
+        if (g->count == 0)
+            continue;
+        int lo[3], hi[3];
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = grid_cell(g, k, x[k] - g->max_radius);
+            hi[k] = grid_cell(g, k, x[k] + g->max_radius);
+        }
+        for (int c2 = lo[2]; c2 <= hi[2]; ++c2)
+            for (int c1 = lo[1]; c1 <= hi[1]; ++c1)
+                for (int c0 = lo[0]; c0 <= hi[0]; ++c0) {
+                    size_t cell =
+                        (size_t)c0 + (size_t)g->size[0] *
+                                         ((size_t)c1 + (size_t)g->size[1] * c2);
+                    for (int e = g->cell_offset[cell];
+                         e < g->cell_offset[cell + 1]; ++e) {
+                        const double *xp = g->cell_data + 4 * (size_t)e;
+                        double a = xp[3];
+                        if (fabs(x[0] - xp[0]) < a && fabs(x[1] - xp[1]) < a &&
+                            fabs(x[2] - xp[2]) < a) {
+                            if (count < capacity)
+                                index[count] = g->cell_particle[e];
+                            ++count;
+                        }
                     }
                 }
-            }
+    }
     if (count > capacity)
         return count;
     /* Insertion sort: the lists are short and nearly sorted by cell. */
@@ -349,11 +353,95 @@ void gsn_rk_destroy(struct gsn_rk **rk)
         return;
     free((*rk)->position);
     free((*rk)->radius);
-    free((*rk)->cell_offset);
-    free((*rk)->cell_particle);
-    free((*rk)->cell_data);
+    for (int level = 0; level < 2; ++level) {
+        free((*rk)->grid[level].cell_offset);
+        free((*rk)->grid[level].cell_particle);
+        free((*rk)->grid[level].cell_data);
+    }
     free(*rk);
     *rk = NULL;
+}
+
+/* A particle whose support is wider than this many times the median goes
+ * to the wide grid (gsn_rk, grid). */
+#define GRID_WIDE 1.5
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The median of the n radii (0 if out of memory). */
+static double median_radius(const double *radius, size_t n)
+{
+    double *copy = malloc(n * sizeof *copy);
+    if (!copy)
+        return 0.0;
+    memcpy(copy, radius, n * sizeof *copy);
+    qsort(copy, n, sizeof *copy, compare_double);
+    double median = copy[n / 2];
+    free(copy);
+    return median;
+}
+
+/* The cell list of grid `level` (0: radius <= wide, 1: wider) over the
+ * box [lo, hi]: cells of its largest radius, coarser if that would give
+ * far more cells than particles. */
+static int grid_build(struct gsn_rk *rk, int level, double wide,
+                      const double lo[3], const double hi[3])
+{
+    struct gsn_rk_grid *g = &rk->grid[level];
+    size_t n = (size_t)rk->particle_count;
+    g->count = 0;
+    g->max_radius = 0.0;
+    for (size_t p = 0; p < n; ++p)
+        if ((rk->radius[p] > wide) == level) {
+            g->count++;
+            g->max_radius = fmax(g->max_radius, rk->radius[p]);
+        }
+    if (g->count == 0)
+        return GSN_OK;
+    g->cell_size = g->max_radius;
+    for (;;) {
+        double cells = 1.0;
+        for (int k = 0; k < 3; ++k)
+            cells *= floor((hi[k] - lo[k]) / g->cell_size) + 1.0;
+        if (cells <= 8.0 * (double)g->count + 64.0)
+            break;
+        g->cell_size *= 1.5;
+    }
+    size_t cells = 1;
+    for (int k = 0; k < 3; ++k) {
+        g->origin[k] = lo[k];
+        g->size[k] = (int)floor((hi[k] - lo[k]) / g->cell_size) + 1;
+        cells *= (size_t)g->size[k];
+    }
+    g->cell_offset = calloc(cells + 1, sizeof *g->cell_offset);
+    g->cell_particle = malloc((size_t)g->count * sizeof *g->cell_particle);
+    g->cell_data = malloc(4 * (size_t)g->count * sizeof *g->cell_data);
+    GSN_CHECK(g->cell_offset && g->cell_particle && g->cell_data,
+              GSN_ERR_MEMORY, "cannot allocate the cell list");
+    for (size_t p = 0; p < n; ++p)
+        if ((rk->radius[p] > wide) == level)
+            g->cell_offset[grid_index(g, rk->position + 3 * p) + 1]++;
+    for (size_t c = 0; c < cells; ++c)
+        g->cell_offset[c + 1] += g->cell_offset[c];
+    /* Fill in particle order so each cell lists ascending indices. */
+    for (size_t p = 0; p < n; ++p)
+        if ((rk->radius[p] > wide) == level)
+            g->cell_particle[g->cell_offset[grid_index(
+                g, rk->position + 3 * p)]++] = (int)p;
+    for (size_t c = cells; c > 0; --c)
+        g->cell_offset[c] = g->cell_offset[c - 1];
+    g->cell_offset[0] = 0;
+    for (int e = 0; e < g->count; ++e) {
+        size_t p = (size_t)g->cell_particle[e];
+        for (int k = 0; k < 3; ++k)
+            g->cell_data[4 * (size_t)e + k] = rk->position[3 * p + k];
+        g->cell_data[4 * (size_t)e + 3] = rk->radius[p];
+    }
+    return GSN_OK;
 }
 
 int gsn_rk_create(int particle_count, const double *position,
@@ -396,50 +484,11 @@ int gsn_rk_create(int particle_count, const double *position,
             hi[k] = fmax(hi[k], v);
         }
     }
-    /* Cells of the largest radius; coarser if that would give far more
-     * cells than particles. */
-    rk->cell_size = rk->max_radius;
-    for (;;) {
-        double cells = 1.0;
-        for (int k = 0; k < 3; ++k)
-            cells *= floor((hi[k] - lo[k]) / rk->cell_size) + 1.0;
-        if (cells <= 8.0 * (double)n + 64.0)
-            break;
-        rk->cell_size *= 1.5;
-    }
-    size_t cells = 1;
-    for (int k = 0; k < 3; ++k) {
-        rk->grid_origin[k] = lo[k];
-        rk->grid_size[k] = (int)floor((hi[k] - lo[k]) / rk->cell_size) + 1;
-        cells *= (size_t)rk->grid_size[k];
-    }
-    rk->cell_offset = calloc(cells + 1, sizeof *rk->cell_offset);
-    rk->cell_particle = malloc(n * sizeof *rk->cell_particle);
-    GSN_CHECK_GOTO(rk->cell_offset && rk->cell_particle, rc, GSN_ERR_MEMORY,
-                   fail, "cannot allocate the cell list");
-    for (size_t p = 0; p < n; ++p) {
-        size_t c = grid_index(rk, position + 3 * p);
-        rk->cell_offset[c + 1]++;
-    }
-    for (size_t c = 0; c < cells; ++c)
-        rk->cell_offset[c + 1] += rk->cell_offset[c];
-    /* Fill in particle order so each cell lists ascending indices. */
-    for (size_t p = 0; p < n; ++p) {
-        size_t c = grid_index(rk, position + 3 * p);
-        rk->cell_particle[rk->cell_offset[c]++] = (int)p;
-    }
-    for (size_t c = cells; c > 0; --c)
-        rk->cell_offset[c] = rk->cell_offset[c - 1];
-    rk->cell_offset[0] = 0;
-    rk->cell_data = malloc(4 * n * sizeof *rk->cell_data);
-    GSN_CHECK_GOTO(rk->cell_data, rc, GSN_ERR_MEMORY, fail,
-                   "cannot allocate the cell list");
-    for (size_t e = 0; e < n; ++e) {
-        size_t p = (size_t)rk->cell_particle[e];
-        for (int k = 0; k < 3; ++k)
-            rk->cell_data[4 * e + k] = position[3 * p + k];
-        rk->cell_data[4 * e + 3] = rk->radius[p];
-    }
+    double wide = GRID_WIDE * median_radius(rk->radius, n);
+    GSN_CHECK_GOTO(wide > 0.0, rc, GSN_ERR_MEMORY, fail,
+                   "cannot sort %zu radii", n);
+    for (int level = 0; level < 2; ++level)
+        GSN_CALL_GOTO(grid_build(rk, level, wide, lo, hi), rc, fail);
     *out = rk;
     return GSN_OK;
 fail:

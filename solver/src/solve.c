@@ -235,7 +235,8 @@ static void apply_loads(struct run *r, double t)
  * resultant of its tractions plus the constraint reactions of the
  * components the entry holds (gsn_constraints_entry: a particle on two
  * surfaces counts once) (DESIGN.md; docs/solver.md, "Boundary values"); on
- * a traction entry, the resultant of the traction it applies. */
+ * a traction entry, the resultant of the traction it applies; on a rigid
+ * body, its prescribed displacement, and the contact force added. */
 static int write_history_row(struct run *r)
 {
     const struct gsn_explicit *e = r->reference->loop;
@@ -244,9 +245,18 @@ static int write_history_row(struct run *r)
     for (int b = 0; b < r->c->boundary_count; ++b) {
         const struct boundary_set *set = &r->boundary[b];
         double mean[3] = {0, 0, 0}, force[3] = {0, 0, 0};
-        for (int s = 0; s < set->count; ++s)
+        int counted = 0;
+        for (int s = 0; s < set->count; ++s) {
+            /* a rigid body: the particles it still holds (it lets go of
+             * those that slide out past its base, contact.h) */
+            if (r->c->boundaries[b].rigid &&
+                !gsn_constraints_holds(r->reference->constraints,
+                                       set->particle[s], b))
+                continue;
             for (int k = 0; k < 3; ++k)
                 mean[k] += u[3 * set->particle[s] + k];
+            ++counted;
+        }
         gsn_explicit_surface_force(e, set->surface,
                                    gsn_constraints_surface_mask(
                                        r->reference->constraints, set->surface),
@@ -264,7 +274,15 @@ static int write_history_row(struct run *r)
         for (int k = 0; k < 3; ++k)
             force[k] += e->load_factor * r->traction_force[b][k];
         for (int k = 0; k < 3; ++k)
-            mean[k] = set->count ? mean[k] / set->count : 0.0;
+            mean[k] = counted ? mean[k] / counted : 0.0;
+        /* a rigid body moves as prescribed: its own displacement (the
+         * particles it takes back under its base keep what they had) */
+        const struct gsn_boundary *entry = &r->c->boundaries[b];
+        for (int k = 0; k < 3 && entry->rigid; ++k)
+            if (entry->has_velocity[k])
+                mean[k] = entry->velocity[k] *
+                          gsn_ramp_factor(r->c->time_ramp,
+                                          GSN_FIELD_DISPLACEMENT, e->time);
         fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", mean[0], mean[1],
                 mean[2], force[0], force[1], force[2]);
     }

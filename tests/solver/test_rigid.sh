@@ -10,7 +10,13 @@
 # - negative control, rigid: false: the soil flows over the base, deeper
 #   than 0.5 h (measured 1.1 h);
 # - case-file checks: rigid without a velocity, and a bad value, name the
-#   line.
+#   line;
+# - a smooth rigid footing pushed 0.4 B into clay with reference updates
+#   (geometries/footing_penetration.yaml at B/5) lets go of the particles
+#   of its base that slide out past its edge: some end beyond x = B/2 with
+#   u_z short of the footing's settlement by more than 0.1 h (without the
+#   release every base particle moves with the footing); the history's u_z
+#   is the footing's own.
 . ./cli_testing.sh
 cp cases/rigid_wall.geo cases/rigid_wall.yaml "$out/"
 sed 's/, rigid: true//' "$out/rigid_wall.yaml" >"$out/free_wall.yaml"
@@ -75,4 +81,31 @@ sed 's/rigid: true/rigid: yes please/' "$out/rigid_wall.yaml" >"$out/word.yaml"
 status=$?
 [ $status -eq 2 ] && grep -q "word.yaml:20:.*rigid" "$out/word.log" ||
     fail "a bad rigid value: status $status, $(cat "$out/word.log")"
+# release of the base's particles that slide out (reference updates)
+{
+    echo "kinematics: large"
+    echo "reference_update: {strain: 0.2, min_steps: 20}"
+    sed -e "s|^geometry: *|geometry: $PWD/../../geometries/|" \
+        -e "s|^\( *spacing:\).*|\1 0.2|" -e "s|^\( *end:\).*|\1 4.25|" \
+        ../../geometries/footing_penetration.yaml
+} >"$out/sinking.yaml"
+GEOSCNI_REPRODUCIBLE=1 "$geoscni" run "$out/sinking.yaml" -o "$out/sinking" -q \
+    --no-pictures >"$out/sinking.log" 2>&1 ||
+    fail "the sinking footing ended with status $?: $(grep error "$out/sinking.log" | head -1)"
+/usr/bin/python3 - "$out/sinking" <<'PY' || fail "release of the base's particles"
+import sys, h5py, numpy as np
+out, h, B, D = sys.argv[1], 0.2, 1.0, 5.0
+X = h5py.File(f"{out}/model.h5", "r")["particles/position"][:]
+frames = h5py.File(f"{out}/results.h5", "r")["frames"]
+last = frames[sorted(frames.keys())[-1]]
+x = X + last["displacement"][:]
+base = (np.abs(X[:, 2] - D) < 1e-9) & (X[:, 0] <= B / 2 + 1e-9)
+settlement = 0.1 * (last.attrs["time"] - 0.25)
+history = np.genfromtxt(f"{out}/history.csv", delimiter=",", names=True)
+reported = -history["footing_uz_m"][-1]
+let_go = base & (x[:, 0] > B / 2) & (-last["displacement"][:, 2] < settlement - 0.1 * h)
+print(f"settlement {settlement:.4f} m (history {reported:.4f}); {base.sum()} base particles, "
+      f"{let_go.sum()} let go past the edge")
+sys.exit(0 if let_go.sum() >= 1 and abs(reported - settlement) < 1e-6 else 1)
+PY
 finish

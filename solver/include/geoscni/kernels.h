@@ -65,12 +65,20 @@ struct gsn_rk {
      * of the ill-conditioned point it reports (the support repair of an
      * updated reference, integration_build.c) */
     double *failure_point;
-    double grid_origin[3];
-    double cell_size;
-    int grid_size[3];
-    int *cell_offset;   /* cells + 1 */
-    int *cell_particle; /* particles by cell, ascending within a cell */
-    double *cell_data;  /* x, y, z, a of cell_particle, in the same order */
+    /* Cell lists for the neighbour search: grid[0] holds the particles of
+     * ordinary support, grid[1] the few much wider than the median (raised
+     * to cover a stretched cell or repaired), so that those do not coarsen
+     * the search for all. */
+    struct gsn_rk_grid {
+        int count;          /* particles in it */
+        double max_radius;  /* of its particles, m */
+        double origin[3];   /* m */
+        double cell_size;   /* m */
+        int size[3];        /* cells along each axis */
+        int *cell_offset;   /* cells + 1 */
+        int *cell_particle; /* particles by cell, ascending within a cell */
+        double *cell_data;  /* x, y, z, a of cell_particle, in that order */
+    } grid[2];
 };
 
 /* Copies the positions (n x 3, m) and spacings h_I (m) and builds the cell
