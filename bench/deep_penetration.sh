@@ -10,6 +10,7 @@
 # is a rigid body (rigid: true: side walls the soil cannot pass, and a
 # smooth footing's particles that slide out past its edge let go;
 # docs/solver.md, "Rigid bodies"); RIGID=0 makes it its base alone.
+# Draws OUT/penetration_FOOTING.png (bench/penetration_plot.c) when built.
 # Usage: [RIGID=0] bench/deep_penetration.sh [BUILD_DIR] [OUT] [SPACINGS] [FOOTINGS] [UPDATE]
 #        (default build, out/penetration, "0.2 0.1", "smooth rough",
 #         "{strain: 0.2, min_steps: 20}")
@@ -59,3 +60,18 @@ for h in $spacings; do
             END { printf "  w/B:q/s_u%s\n  ended at %.3f B\n", line, end }' "$out/$name/history.csv"
     done
 done
+# the charts: each footing's runs against Prandtl and Salgado
+plot=$root/$build/bin/penetration_plot
+if [ -x "$plot" ]; then
+    for footing in $footings; do
+        set --
+        for h in $spacings; do
+            [ -f "$out/${footing}_h$h/history.csv" ] &&
+                set -- "$@" "$out/${footing}_h$h/history.csv" \
+                    "$footing, B/$(echo "$h" | awk '{printf "%.0f", 1 / $1}')" \
+                    "$(echo "$h" | awk '{print 0.5 * 2 * $1}')"
+        done
+        [ $# -gt 0 ] && "$plot" "$out/penetration_$footing.png" "$@" &&
+            echo "chart: $out/penetration_$footing.png"
+    done
+fi
