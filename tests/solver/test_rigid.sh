@@ -16,7 +16,10 @@
 #   of its base that slide out past its edge: some end beyond x = B/2 with
 #   u_z short of the footing's settlement by more than 0.1 h (without the
 #   release every base particle moves with the footing); the history's u_z
-#   is the footing's own.
+#   is the footing's own; stopped halfway on 1 thread and continued with
+#   --restart on 2, it ends on the uninterrupted run's last history row,
+#   bit for bit (the contact forces are recomputed from the checkpoint's
+#   state, the released particles from its reference positions).
 . ./cli_testing.sh
 cp cases/rigid_wall.geo cases/rigid_wall.yaml "$out/"
 sed 's/, rigid: true//' "$out/rigid_wall.yaml" >"$out/free_wall.yaml"
@@ -108,4 +111,12 @@ print(f"settlement {settlement:.4f} m (history {reported:.4f}); {base.sum()} bas
       f"{let_go.sum()} let go past the edge")
 sys.exit(0 if let_go.sum() >= 1 and abs(reported - settlement) < 1e-6 else 1)
 PY
+mkdir -p "$out/resumed" && cp "$out/sinking/model.h5" "$out/resumed/"
+sed 's|^\( *end:\).*|\1 2.25|' "$out/sinking.yaml" >"$out/sinking_half.yaml"
+OMP_NUM_THREADS=1 "$geoscni" solve "$out/sinking_half.yaml" -o "$out/resumed" -q \
+    2>"$out/resumed.log" || fail "the first half: $(cat "$out/resumed.log")"
+OMP_NUM_THREADS=2 "$geoscni" solve "$out/sinking.yaml" -o "$out/resumed" -q --restart \
+    2>>"$out/resumed.log" || fail "the restart: $(cat "$out/resumed.log")"
+[ "$(tail -1 "$out/sinking/history.csv")" = "$(tail -1 "$out/resumed/history.csv")" ] ||
+    fail "the restarted sinking footing ends elsewhere than the uninterrupted one"
 finish
