@@ -16,10 +16,13 @@
 # UPDATE_EVERY=K adds a reference-configuration update every K steps (issue
 # 15, point 4): the rate then includes them, and each run's line their count
 # and share of the solve.
+# MODEL=PATH solves that model.h5 instead of making one: to compare two
+# builds on one model (gmsh's HXT meshes differ from run to run, and so do
+# the costs they give; copy the first run's with KEEP_MODEL=PATH).
 # Usage: bench/solver_bench.sh [BUILD_DIR] [RUNS] [STEPS] [CASE] [INTEGRATION]
 #        (default build, 3, 300, geometries/slope_I.yaml, the case's)
-#        THREADS="1 2" (default), LOADED and UPDATE_EVERY (unset) in the
-#        environment
+#        THREADS="1 2" (default), LOADED, UPDATE_EVERY, MODEL and
+#        KEEP_MODEL (unset) in the environment
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-build}
@@ -56,7 +59,12 @@ if [ -n "${UPDATE_EVERY:-}" ]; then
     step=$(sed -n 's/^ *step: *\([0-9.e-]*\).*/\1/p' "$work/case.yaml")
     echo "reference_update: {every: $(echo "$UPDATE_EVERY ${step:-1e-3}" | awk '{print $1 * $2}'), min_steps: 1}" >>"$work/case.yaml"
 fi
-"$geoscni" pre "$work/case.yaml" -o "$work/out" -q
+if [ -n "${MODEL:-}" ]; then
+    mkdir -p "$work/out" && cp "$MODEL" "$work/out/model.h5"
+else
+    "$geoscni" pre "$work/case.yaml" -o "$work/out" -q
+fi
+[ -n "${KEEP_MODEL:-}" ] && cp "$work/out/model.h5" "$KEEP_MODEL"
 restart=
 if [ -n "$loaded" ]; then
     sed -e "s|^\( *end:\).*|\1 $loaded|" "$work/case.yaml" >"$work/load.yaml"

@@ -33,15 +33,12 @@ enum { CHUNK = 128 };
 /* Doubles of per-thread work per batch: G, strain increment, old stress,
  * new H, mid-step determinant, old equivalent plastic strain. */
 enum { CHUNK_WORK = CHUNK * (9 + 6 + 6 + 9 + 1 + 1) };
-/* Power iterations of the stable-step estimate: at least the first, at most
- * the second; it stops when the Rayleigh quotient moved less than
- * POWER_TOLERANCE (relative) over the last POWER_WINDOW iterations. */
-enum {
-    POWER_MIN_ITERATIONS = 30,
-    POWER_MAX_ITERATIONS = 300,
-    POWER_WINDOW = 10
-};
-#define POWER_TOLERANCE 1e-3
+/* Lanczos steps of the stable-step estimate: at most LANCZOS_STEPS; it
+ * stops when the largest Ritz value's residual bound is below
+ * LANCZOS_TOLERANCE of it (the estimate is then that value plus the
+ * bound: from above). */
+enum { LANCZOS_STEPS = 120 };
+#define LANCZOS_TOLERANCE 1e-4
 
 /* The sums of a step over the particles (or points) of one range. */
 struct gsn_step_sums {
@@ -952,7 +949,7 @@ static int block_step(struct gsn_explicit *e, int k)
     return GSN_OK;
 }
 
-/* The linear elastic pass over block k for y = K x (power iteration), with
+/* The linear elastic pass over block k for y = K x (the stable step), with
  * the stabilization split as in block_step. */
 static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
 {
@@ -1373,52 +1370,122 @@ static void apply_stiffness(struct gsn_explicit *e, const double *x, double *y)
                             parallel_worth(e->particle_count));
 }
 
+/* The largest eigenvalue of the symmetric tridiagonal matrix (diagonal
+ * a[0..m), off-diagonal b[0..m-1)) by Sturm bisection, and the last
+ * component of its unit eigenvector (inverse iteration), for the Ritz
+ * residual. */
+static double tridiagonal_largest(const double *a, const double *b, int m,
+                                  double *last, double *work)
+{
+    double lo = a[0], hi = a[0];
+    for (int i = 0; i < m; ++i) { /* Gershgorin */
+        double r =
+            (i > 0 ? fabs(b[i - 1]) : 0.0) + (i < m - 1 ? fabs(b[i]) : 0.0);
+        lo = fmin(lo, a[i] - r);
+        hi = fmax(hi, a[i] + r);
+    }
+    for (int k = 0; k < 200 && hi - lo > 1e-15 * fabs(hi); ++k) {
+        double mid = 0.5 * (lo + hi), d = 1.0;
+        int below = 0; /* eigenvalues below mid: negative pivots of T - mid */
+        for (int i = 0; i < m; ++i) {
+            d = a[i] - mid - (i > 0 ? b[i - 1] * b[i - 1] / d : 0.0);
+            if (d == 0.0)
+                d = 1e-300;
+            below += d < 0.0;
+        }
+        if (below < m) /* the largest lies above mid */
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double theta = hi;
+    /* inverse iteration (T - theta') v = v with theta' just above theta:
+     * the Thomas algorithm, two sweeps */
+    double shift = theta * (1.0 + 1e-10) + 1e-300, *c = work, *v = work + m;
+    for (int i = 0; i < m; ++i)
+        v[i] = 1.0;
+    for (int sweep = 0; sweep < 2; ++sweep) {
+        double pivot = a[0] - shift;
+        c[0] = m > 1 ? b[0] / pivot : 0.0;
+        v[0] /= pivot;
+        for (int i = 1; i < m; ++i) {
+            pivot = a[i] - shift - b[i - 1] * c[i - 1];
+            c[i] = i < m - 1 ? b[i] / pivot : 0.0;
+            v[i] = (v[i] - b[i - 1] * v[i - 1]) / pivot;
+        }
+        for (int i = m - 2; i >= 0; --i)
+            v[i] -= c[i] * v[i + 1];
+        double norm = 0.0;
+        for (int i = 0; i < m; ++i)
+            norm += v[i] * v[i];
+        norm = sqrt(norm);
+        for (int i = 0; i < m; ++i)
+            v[i] /= norm;
+    }
+    *last = fabs(v[m - 1]);
+    return theta;
+}
+
 int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt)
 {
-    const int n = e->particle_count;
-    double *x = NULL, *y = NULL;
+    const size_t n3 = 3 * (size_t)e->particle_count;
+    double *v = NULL, *previous = NULL, *y = NULL;
+    double alpha[LANCZOS_STEPS], beta[LANCZOS_STEPS], work[2 * LANCZOS_STEPS];
     int rc = GSN_OK;
-    GSN_CALL_GOTO(alloc_array((void **)&x, 3 * (size_t)n, sizeof(double)), rc,
+    GSN_CALL_GOTO(alloc_array((void **)&v, n3, sizeof(double)), rc, done);
+    GSN_CALL_GOTO(alloc_array((void **)&previous, n3, sizeof(double)), rc,
                   done);
-    GSN_CALL_GOTO(alloc_array((void **)&y, 3 * (size_t)n, sizeof(double)), rc,
-                  done);
-    /* Deterministic start with every mode present: a hashed sequence. */
+    GSN_CALL_GOTO(alloc_array((void **)&y, n3, sizeof(double)), rc, done);
+    /* Lanczos on M^-1 K in the mass inner product <x, y> = x^T M y, from a
+     * deterministic start with every mode present (a hashed sequence);
+     * the Ritz values approach the largest eigenvalue from below, so the
+     * estimate adds the residual bound beta_m |s_m|. */
     unsigned state = 12345u;
-    for (int i = 0; i < 3 * n; ++i) {
+    for (size_t i = 0; i < n3; ++i) {
         state = state * 1664525u + 1013904223u;
-        x[i] = (double)(state >> 8) / 16777216.0 - 0.5;
+        v[i] = (double)(state >> 8) / 16777216.0 - 0.5;
     }
-    double lambda = 0.0, history[POWER_WINDOW] = {0};
-    for (int iteration = 0; iteration < POWER_MAX_ITERATIONS; ++iteration) {
-        /* Normalize in the mass norm, then y = M^-1 K x. */
-        double norm = 0.0;
-        for (int i = 0; i < n; ++i)
-            for (int k = 0; k < 3; ++k)
-                norm += e->mass[i] * x[3 * i + k] * x[3 * i + k];
-        norm = sqrt(norm);
-        GSN_CHECK_GOTO(norm > 0.0 && isfinite(norm), rc, GSN_ERR_NUMERICAL,
-                       done, "the stable step estimate broke down");
-        for (int i = 0; i < 3 * n; ++i)
-            x[i] /= norm;
-        apply_stiffness(e, x, y);
-        double rayleigh = 0.0;
-        for (int i = 0; i < 3 * n; ++i)
-            rayleigh += x[i] * y[i];
-        lambda = rayleigh; /* x^T K x / x^T M x with x^T M x = 1 */
-        double earlier = history[iteration % POWER_WINDOW];
-        history[iteration % POWER_WINDOW] = lambda;
-        if (iteration >= POWER_MIN_ITERATIONS &&
-            fabs(lambda - earlier) <= POWER_TOLERANCE * lambda)
+    double norm = 0.0;
+    for (size_t i = 0; i < n3; ++i)
+        norm += e->mass[i / 3] * v[i] * v[i];
+    norm = sqrt(norm);
+    for (size_t i = 0; i < n3; ++i)
+        v[i] /= norm;
+    double lambda = 0.0;
+    for (int m = 0; m < LANCZOS_STEPS; ++m) {
+        apply_stiffness(e, v, y); /* y = K v */
+        double a = 0.0;
+        for (size_t i = 0; i < n3; ++i)
+            a += v[i] * y[i];
+        alpha[m] = a;
+        /* w = M^-1 K v - a v - beta_(m-1) v_(m-1), into y */
+        double b2 = 0.0;
+        for (size_t i = 0; i < n3; ++i) {
+            double w = y[i] / e->mass[i / 3] - a * v[i] -
+                       (m > 0 ? beta[m - 1] * previous[i] : 0.0);
+            y[i] = w;
+            b2 += e->mass[i / 3] * w * w;
+        }
+        beta[m] = sqrt(b2);
+        double last;
+        double theta = tridiagonal_largest(alpha, beta, m + 1, &last, work);
+        double bound = beta[m] * last;
+        lambda = theta + bound;
+        GSN_CHECK_GOTO(isfinite(lambda), rc, GSN_ERR_NUMERICAL, done,
+                       "the stable step estimate broke down");
+        if (bound <= LANCZOS_TOLERANCE * theta || !(beta[m] > 0.0))
             break;
-        for (int i = 0; i < n; ++i)
-            for (int k = 0; k < 3; ++k)
-                x[3 * i + k] = y[3 * i + k] / e->mass[i];
+        for (size_t i = 0; i < n3; ++i) {
+            previous[i] = v[i];
+            v[i] = y[i] / beta[m];
+        }
     }
     GSN_CHECK_GOTO(lambda > 0.0, rc, GSN_ERR_NUMERICAL, done,
                    "the stiffness has no positive eigenvalue");
     *dt = 2.0 / sqrt(lambda);
 done:
-    free(x);
+    free(v);
+    free(previous);
     free(y);
     /* The iteration used the first-pass arrays as scratch. */
     if (rc == GSN_OK)

@@ -278,8 +278,9 @@ void gsn_explicit_set_time_step(struct gsn_explicit *e, double dt);
 int gsn_explicit_step(struct gsn_explicit *e);
 
 /* The largest stable step of the linear elastic system at the reference
- * configuration, 2 / sqrt(lambda_max(M^-1 K)), with lambda_max from power
- * iteration (deterministic start). Unconstrained, so it bounds the
+ * configuration, 2 / sqrt(lambda_max(M^-1 K)), with lambda_max from
+ * Lanczos in the mass inner product (deterministic start; the largest Ritz
+ * value plus its residual bound). Unconstrained, so it bounds the
  * constrained system's step from below. */
 int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt);
 

@@ -666,12 +666,12 @@ static int choose_time_step(struct run *r)
         e->dt = c->time_step_safety * stable;
         if (!r->options->quiet)
             printf("time step: %.4g s (auto: %.2f x the stable step %.4g s "
-                   "from power iteration on M^-1 K)\n",
+                   "from Lanczos on M^-1 K)\n",
                    e->dt, c->time_step_safety, stable);
     } else {
         GSN_CHECK(c->time_step <= stable || r->options->force, GSN_ERR_INPUT,
                   "%s: time.step = %.4g s is above the stable step %.4g s of "
-                  "this model (power iteration on M^-1 K); use a smaller "
+                  "this model (Lanczos on M^-1 K); use a smaller "
                   "step, 'step: auto', or --force",
                   c->path, c->time_step, stable);
         e->dt = c->time_step;

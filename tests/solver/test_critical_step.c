@@ -2,7 +2,7 @@
  * fixed, random initial velocities exciting every mode) is found by
  * bisection on runs of 2000 steps; a run at 0.95 of it stays bounded and
  * one at 1.05 of it blows up and is reported as a numerical failure. The
- * estimate of `step: auto` (power iteration on M^-1 K of the free block)
+ * estimate of `step: auto` (Lanczos on M^-1 K of the free block)
  * must lie below the measured critical step (safe) and not far below
  * (useful). REFERENCES.md, "Critical time step". */
 #include "geoscni/case.h"
@@ -67,7 +67,7 @@ int main(void)
     double c_p =
         sqrt((c.material.bulk_modulus + 4.0 * c.material.shear_modulus / 3.0) /
              c.material.density);
-    printf("critical step %.5g s (%.3f h/c_p), power-iteration estimate %.5g "
+    printf("critical step %.5g s (%.3f h/c_p), Lanczos estimate %.5g "
            "s (%.3f of it)\n",
            critical, critical * c_p / 0.2, estimate, estimate / critical);
     TEST_INT(run_at(&c, 0.95 * critical), GSN_OK);

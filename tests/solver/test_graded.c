@@ -9,7 +9,7 @@
  *    nominal h (the fine spacing everywhere) they are not (the negative
  *    control that shows why h_I must be local);
  *  - SCNI passes the linear patch test on the graded body to 1e-10;
- *  - the stable step (power iteration on M^-1 K) comes from the smallest
+ *  - the stable step (Lanczos on M^-1 K) comes from the smallest
  *    particles: below the uniform 0.25 m box's, near the uniform 0.1 m
  *    box's. */
 #include "geoscni/case.h"
