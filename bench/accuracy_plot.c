@@ -10,6 +10,7 @@
  *   accuracy_plot CSV PROBLEM PNG [TITLE [ERROR_LABEL]]
  *
  * Prints the rates. Exit status 0, 1 (VTK or I/O failed), 2 (bad input). */
+#include "csv.h"
 #include "display.h"
 #include "geoscni/error.h"
 #include "vtk_output.h"
@@ -34,29 +35,6 @@ struct series {
     double spacing[MAX_POINTS], time[MAX_POINTS], error[MAX_POINTS];
 };
 
-/* Splits line at commas in place (no quoting in these CSVs). */
-static int split(char *line, char **cells)
-{
-    int count = 0;
-    line[strcspn(line, "\r\n")] = '\0';
-    for (char *c = line; count < MAX_COLUMNS;) {
-        cells[count++] = c;
-        c = strchr(c, ',');
-        if (!c)
-            break;
-        *c++ = '\0';
-    }
-    return count;
-}
-
-static int column(char **names, int count, const char *name)
-{
-    for (int i = 0; i < count; ++i)
-        if (strcmp(names[i], name) == 0)
-            return i;
-    return -1;
-}
-
 /* Reads the rows of one problem into the series of the known methods;
  * 2 on bad input (the message printed). */
 static int read_csv(const char *path, const char *problem,
@@ -69,12 +47,14 @@ static int read_csv(const char *path, const char *problem,
     }
     char header[LINE_SIZE], line[LINE_SIZE];
     char *names[MAX_COLUMNS], *cells[MAX_COLUMNS];
-    int columns = fgets(header, sizeof header, file) ? split(header, names) : 0;
-    int c_problem = column(names, columns, "problem"),
-        c_method = column(names, columns, "method"),
-        c_spacing = column(names, columns, "spacing"),
-        c_time = column(names, columns, "cpu_s"),
-        c_error = column(names, columns, "error");
+    int columns = fgets(header, sizeof header, file)
+                      ? csv_split(header, names, MAX_COLUMNS)
+                      : 0;
+    int c_problem = csv_column(names, columns, "problem"),
+        c_method = csv_column(names, columns, "method"),
+        c_spacing = csv_column(names, columns, "spacing"),
+        c_time = csv_column(names, columns, "cpu_s"),
+        c_error = csv_column(names, columns, "error");
     int rc = 0, rows = 0;
     if (c_problem < 0 || c_method < 0 || c_spacing < 0 || c_time < 0 ||
         c_error < 0) {
@@ -85,7 +65,7 @@ static int read_csv(const char *path, const char *problem,
         rc = 2;
     }
     for (int number = 2; rc == 0 && fgets(line, sizeof line, file); ++number) {
-        if (split(line, cells) < columns ||
+        if (csv_split(line, cells, MAX_COLUMNS) < columns ||
             strcmp(cells[c_problem], problem) != 0)
             continue;
         int m = 0;

@@ -12,6 +12,7 @@
  * burst (q below 0 or above twice Salgado's) are left out of the curve, so
  * that they do not set the scale, and printed. Exit status 0, 1 (VTK or
  * I/O failed), 2 (bad input). */
+#include "csv.h"
 #include "display.h"
 #include "vtk_output.h"
 
@@ -30,20 +31,6 @@ static double salgado(double w)
     return PRANDTL * (1.0 + 0.27 * sqrt(w));
 }
 
-/* Splits line at commas in place. */
-static int split(char *line, char **cells)
-{
-    int count = 0;
-    for (char *p = line; count < MAX_COLUMNS;) {
-        cells[count++] = p;
-        p = strchr(p, ',');
-        if (!p)
-            break;
-        *p++ = '\0';
-    }
-    return count;
-}
-
 /* Reads w / B and q / s_u of one run; returns the point count, -1 on
  * error (printed). */
 static int read_run(const char *path, double area, double *w, double *q)
@@ -54,17 +41,10 @@ static int read_run(const char *path, double area, double *w, double *q)
         return -1;
     }
     char line[LINE_SIZE], *cells[MAX_COLUMNS];
-    int uz = -1, fz = -1, count = 0;
-    if (fgets(line, sizeof line, f)) {
-        line[strcspn(line, "\r\n")] = '\0';
-        int n = split(line, cells);
-        for (int c = 0; c < n; ++c) {
-            if (strcmp(cells[c], "footing_uz_m") == 0)
-                uz = c;
-            if (strcmp(cells[c], "footing_fz_N") == 0)
-                fz = c;
-        }
-    }
+    int columns =
+        fgets(line, sizeof line, f) ? csv_split(line, cells, MAX_COLUMNS) : 0;
+    int uz = csv_column(cells, columns, "footing_uz_m"),
+        fz = csv_column(cells, columns, "footing_fz_N"), count = 0;
     if (uz < 0 || fz < 0) {
         fprintf(stderr,
                 "penetration_plot: %s has no footing_uz_m and "
@@ -74,7 +54,7 @@ static int read_run(const char *path, double area, double *w, double *q)
         return -1;
     }
     while (count < MAX_POINTS && fgets(line, sizeof line, f)) {
-        int n = split(line, cells);
+        int n = csv_split(line, cells, MAX_COLUMNS);
         if (n <= uz || n <= fz)
             continue;
         w[count] = -atof(cells[uz]);
