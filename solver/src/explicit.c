@@ -504,6 +504,28 @@ fail:
     return rc;
 }
 
+/* Component i (3 I + k) of the contact force, 0 without bodies. */
+static inline double contact_force(const struct gsn_explicit *e, int i)
+{
+    return e->contact ? e->contact_force[i] : 0.0;
+}
+
+/* Component i of the external force on the body that W_ext integrates:
+ * the dead loads, the contact, the reactions and the boundary term. */
+static inline double external_force(const struct gsn_explicit *e, int i)
+{
+    return e->f_ext[i] + contact_force(e, i) + e->reaction[i] +
+           e->boundary_force[i];
+}
+
+/* The external force of the present state, the start of the next step's
+ * trapezoid. */
+static void store_previous_external(struct gsn_explicit *e)
+{
+    for (int i = 0; i < 3 * e->particle_count; ++i)
+        e->previous_external[i] = external_force(e, i);
+}
+
 void gsn_explicit_add_traction(struct gsn_explicit *e,
                                const struct gsn_model *m, int surface,
                                const double traction[3])
@@ -519,11 +541,9 @@ void gsn_explicit_add_traction(struct gsn_explicit *e,
                 e->f_ext_full[3 * values->index[k] + c] +=
                     values->value[k] * traction[c] * w;
     }
-    for (int i = 0; i < 3 * e->particle_count; ++i) {
+    for (int i = 0; i < 3 * e->particle_count; ++i)
         e->f_ext[i] = e->load_factor * e->f_ext_full[i];
-        e->previous_external[i] =
-            e->f_ext[i] + e->reaction[i] + e->boundary_force[i];
-    }
+    store_previous_external(e);
 }
 
 /* Small-strain elastic stress of the strain eps (Voigt, tensor shear). */
@@ -1031,12 +1051,6 @@ static int contact_forces(struct gsn_explicit *e, double t)
         &e->contact_count);
 }
 
-/* Component i (3 I + k) of the contact force, 0 without bodies. */
-static inline double contact_force(const struct gsn_explicit *e, int i)
-{
-    return e->contact ? e->contact_force[i] : 0.0;
-}
-
 int gsn_explicit_set_contact(struct gsn_explicit *e,
                              const struct gsn_contact *contact)
 {
@@ -1047,9 +1061,7 @@ int gsn_explicit_set_contact(struct gsn_explicit *e,
         GSN_CALL(alloc_array((void **)&e->contact_force,
                              3 * (size_t)e->particle_count, sizeof(double)));
     GSN_CALL(contact_forces(e, e->time));
-    for (int i = 0; i < 3 * e->particle_count; ++i)
-        e->previous_external[i] = e->f_ext[i] + e->reaction[i] +
-                                  e->boundary_force[i] + e->contact_force[i];
+    store_previous_external(e);
     return GSN_OK;
 }
 
@@ -1075,9 +1087,7 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
     if (!e->skip_boundary_term)
         boundary_term(e, e->boundary_force);
     GSN_CALL(contact_forces(e, e->time));
-    for (int i = 0; i < 3 * e->particle_count; ++i)
-        e->previous_external[i] = e->f_ext[i] + e->reaction[i] +
-                                  e->boundary_force[i] + contact_force(e, i);
+    store_previous_external(e);
     return GSN_OK;
 }
 
@@ -1263,8 +1273,7 @@ static void reactions_and_energies(struct gsn_explicit *e, int i0, int i1,
                                         e->f_ext[at] - contact_force(e, at) +
                                         e->f_int[at]
                                   : 0.0;
-            double total = e->f_ext[at] + contact_force(e, at) +
-                           e->reaction[at] + e->boundary_force[at];
+            double total = external_force(e, at);
             sums->external +=
                 0.5 * (e->previous_external[at] + total) *
                 (e->displacement[at] - e->previous_displacement[at]);
