@@ -1306,16 +1306,29 @@ static int read_refinements(struct reader *r, const yaml_node_t *particles,
 /* boundary.NAME.symmetry: true holds the normal component of an
  * axis-aligned plane surface (resolved on the model, symmetry.c); it
  * excludes every other key of the entry. */
-static int read_symmetry(struct reader *r, const yaml_node_t *entry,
-                         const char *context, struct gsn_boundary *b)
+/* boundary.NAME.KEY: true or false into *flag (left as it is when the key
+ * is absent); *node gets the key's value node, or NULL. */
+static int read_entry_flag(struct reader *r, const yaml_node_t *entry,
+                           const char *context, const char *key, int *flag,
+                           yaml_node_t **node)
 {
-    yaml_node_t *node = mapping_find(r, entry, "symmetry");
-    if (!node)
+    *node = mapping_find(r, entry, key);
+    if (!*node)
         return GSN_OK;
     static const char *const truth[] = {"false", "true", NULL};
     char name[GSN_NAME_SIZE + 32];
-    snprintf(name, sizeof name, "%s.symmetry", context);
-    GSN_CALL(parse_word(r, node, name, truth, &b->symmetry));
+    snprintf(name, sizeof name, "%s.%s", context, key);
+    return parse_word(r, *node, name, truth, flag);
+}
+
+static int read_symmetry(struct reader *r, const yaml_node_t *entry,
+                         const char *context, struct gsn_boundary *b)
+{
+    yaml_node_t *node;
+    GSN_CALL(
+        read_entry_flag(r, entry, context, "symmetry", &b->symmetry, &node));
+    if (!node)
+        return GSN_OK;
     GSN_CHECK(!b->symmetry || (!mapping_find(r, entry, "fix") &&
                                !mapping_find(r, entry, "velocity") &&
                                !mapping_find(r, entry, "traction")),
@@ -1332,13 +1345,10 @@ static int read_symmetry(struct reader *r, const yaml_node_t *entry,
 static int read_rigid(struct reader *r, const yaml_node_t *entry,
                       const char *context, struct gsn_boundary *b)
 {
-    yaml_node_t *node = mapping_find(r, entry, "rigid");
+    yaml_node_t *node;
+    GSN_CALL(read_entry_flag(r, entry, context, "rigid", &b->rigid, &node));
     if (!node)
         return GSN_OK;
-    static const char *const truth[] = {"false", "true", NULL};
-    char name[GSN_NAME_SIZE + 32];
-    snprintf(name, sizeof name, "%s.rigid", context);
-    GSN_CALL(parse_word(r, node, name, truth, &b->rigid));
     double speed = 0.0;
     for (int k = 0; k < 3; ++k)
         if (b->has_velocity[k])
