@@ -380,14 +380,23 @@ static double top_z(const struct gsn_model *m)
     return z;
 }
 
+/* The block with its tetrahedra, and a copy of its positions to move
+ * (freed by the caller). */
+static double *block_to_move(struct gsn_model *m)
+{
+    TEST_INT(fixture_box(COUNT, LO, HI, JITTER, 1, m), GSN_OK);
+    size_t bytes = sizeof(double) * 3 * (size_t)m->particle_count;
+    double *x = malloc(bytes);
+    memcpy(x, m->position, bytes);
+    return x;
+}
+
 static void test_remesh_keeps_leaked_particle(void)
 {
     struct gsn_model m;
-    TEST_INT(fixture_box(COUNT, LO, HI, JITTER, 1, &m), GSN_OK);
+    double *x = block_to_move(&m);
     int n = m.particle_count;
     double h = box_spacing(), top = top_z(&m);
-    double *x = malloc(sizeof(double) * 3 * (size_t)n);
-    memcpy(x, m.position, sizeof(double) * 3 * (size_t)n);
     /* the particle of the second layer from the top nearest to the top
      * face's centre, carried 0.3 h above the top */
     int leak = -1;
@@ -434,11 +443,9 @@ static void test_remesh_keeps_leaked_particle(void)
 static void test_support_repair(void)
 {
     struct gsn_model m;
-    TEST_INT(fixture_box(COUNT, LO, HI, JITTER, 1, &m), GSN_OK);
+    double *x = block_to_move(&m);
     int n = m.particle_count;
     double h = box_spacing(), top = top_z(&m);
-    double *x = malloc(sizeof(double) * 3 * (size_t)n);
-    memcpy(x, m.position, sizeof(double) * 3 * (size_t)n);
     /* the top layer pulled 9 spacings up: its cells and their neighbours'
      * are 10 h long, past the covering supports (at most 2 x 1.5 h) */
     for (int i = 0; i < n; ++i)
