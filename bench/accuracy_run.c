@@ -338,15 +338,13 @@ static int run(const struct problem *p, struct gsn_case *c,
 
     struct gsn_kernel_options kernel;
     gsn_kernel_options_from_case(c, &kernel);
-    GSN_CALL_GOTO(gsn_quadrature_create(&model, &kernel, background, cells, &q),
+    GSN_CALL_GOTO(gsn_constraints_discretize(&model, c, &kernel, background,
+                                             cells, NULL, &q, &constraints),
                   rc, done);
     GSN_CALL_GOTO(
         gsn_material_model_create(gsn_material_name_for_case(&c->material),
                                   &c->material, &material),
         rc, done);
-    GSN_CALL_GOTO(gsn_constraints_create(&model, c, &q->particle_values, NULL,
-                                         &constraints),
-                  rc, done);
     GSN_CALL_GOTO(
         gsn_explicit_create(&model, q, material, constraints, c, 1.0, &e), rc,
         done);

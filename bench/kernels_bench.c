@@ -118,7 +118,7 @@ int main(int argc, char **argv)
     const int subcells[4] = {6, 6, 2, 6};
     for (int s = 0; s < 4; ++s) {
         struct gsn_kernel_options o = {1.5,     1,   method[s],   2,
-                                       stab[s], 1.0, subcells[s], 0};
+                                       stab[s], 1.0, subcells[s], 0, NULL, NULL};
         struct gsn_quadrature *q = NULL;
         double t0 = omp_get_wtime(), c0 = cpu_seconds();
         if (gsn_quadrature_create(&m, &o, NULL, 0, &q)) {

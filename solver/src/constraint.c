@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Lambda_c with a condition estimate worse than this cannot be trusted to
+/* S_c with a condition estimate worse than this cannot be trusted to
  * impose the boundary values to 1e-8 relative. */
 #define CONSTRAINT_RCOND_LIMIT 1e-12
-/* The copied factors must solve Lambda x = b with a componentwise backward
- * error (|Lambda x - b|_i / (|Lambda| |x| + |b|)_i, Oettli-Prager) below
+/* The copied factors must solve S x = b with a componentwise backward
+ * error (|S x - b|_i / (|S| |x| + |b|)_i, Oettli-Prager) below
  * this: LU with partial pivoting gives a small multiple of n eps; a wrong
  * copy of the factors gives O(1), whatever the conditioning. */
 #define CONSTRAINT_SOLVE_CHECK 1e-10
@@ -23,15 +23,28 @@ struct component_constraint {
     int count;        /* |B_c| */
     int *particle;    /* B_c, ascending */
     double *velocity; /* prescribed velocity of each, m/s (0: fixed) */
-    int *row_offset;  /* Lambda_c in CSR (rows J, columns K, both B_c) */
-    int *column;
-    double *entry;
+    /* C_c: row s = Psi_I(X_J) over all I, J = particle[s] (CSR) */
+    int *row_offset;
+    int *row_index;
+    double *row_value;
+    /* C_c^T by the particles its rows touch (ascending), with each touched
+     * particle's inverse mass: the correction M^-1 C^T lambda */
+    int touched_count;
+    int *touched;
+    double *touched_inverse_mass;
+    int *touched_offset;
+    int *touched_row;
+    double *touched_value;
+    /* S_c = C_c M^-1 C_c^T (rows and columns B_c) in CSR, for the check */
+    int *s_offset;
+    int *s_column;
+    double *s_entry;
     double *rhs; /* right-hand side, then solution */
-    /* The factors of Lambda_c from KLU (klu_extract, one block):
-     * P (R \ Lambda) Q = L U, copied for the solve of every step (each
+    /* The factors of S_c from KLU (klu_extract, one block):
+     * P (R \ S) Q = L U, copied for the solve of every step (each
      * triangle by column in the order the solve reads it; the strict
      * parts, U's diagonal apart). */
-    int *pivot_row;    /* P: row pivot_row[k] of Lambda is pivot k */
+    int *pivot_row;    /* P: row pivot_row[k] of S is pivot k */
     int *column_order; /* Q: unknown column_order[k] is pivot k's */
     double *row_scale; /* R: pivot row k was divided by row_scale[k] (KLU
                           keeps the scale factors in pivot order) */
@@ -43,11 +56,6 @@ struct component_constraint {
     double *upper_value;
     double *upper_diagonal;
     double *pivot_work; /* count */
-    /* The entries Psi_I(X_J) of the rows J in B_c with I not in B_c (the
-     * right-hand side of a correction), in row order. */
-    int *free_offset; /* count + 1 */
-    int *free_index;  /* I */
-    double *free_value;
 };
 
 struct gsn_constraints {
@@ -62,6 +70,7 @@ struct gsn_constraints {
     int *entry_of;      /* particles x 3: the boundary entry whose
                            prescription holds the component, or -1 */
     int *slot[3];       /* slot[c][I]: position of I in B_c, or -1 */
+    int factorized;     /* gsn_constraints_set_mass has run */
     struct component_constraint component[3];
 };
 
@@ -76,17 +85,17 @@ void gsn_constraints_destroy(struct gsn_constraints **constraints)
         struct component_constraint *cc = &k->component[c];
         free(cc->particle);
         free(cc->velocity);
-        free(cc->row_offset);
-        free(cc->column);
-        free(cc->entry);
         free(cc->rhs);
-        free(cc->free_offset);
-        free(cc->free_index);
-        free(cc->free_value);
-        int *ints[] = {cc->pivot_row, cc->column_order, cc->lower_offset,
-                       cc->lower_row, cc->upper_offset, cc->upper_row};
-        double *doubles[] = {cc->row_scale, cc->lower_value, cc->upper_value,
-                             cc->upper_diagonal, cc->pivot_work};
+        int *ints[] = {cc->row_offset,     cc->row_index,    cc->touched,
+                       cc->touched_offset, cc->touched_row,  cc->s_offset,
+                       cc->s_column,       cc->pivot_row,    cc->column_order,
+                       cc->lower_offset,   cc->lower_row,    cc->upper_offset,
+                       cc->upper_row};
+        double *doubles[] = {cc->row_value,   cc->touched_inverse_mass,
+                             cc->touched_value, cc->s_entry,
+                             cc->row_scale,   cc->lower_value,
+                             cc->upper_value, cc->upper_diagonal,
+                             cc->pivot_work};
         for (size_t i = 0; i < sizeof ints / sizeof ints[0]; ++i)
             free(ints[i]);
         for (size_t i = 0; i < sizeof doubles / sizeof doubles[0]; ++i)
@@ -148,7 +157,7 @@ static int collect_prescriptions(const struct gsn_model *m,
     return GSN_OK;
 }
 
-/* Copies KLU's factors P (R \ Lambda) Q = L U (one block: no BTF) into
+/* Copies KLU's factors P (R \ S) Q = L U (one block: no BTF) into
  * the arrays of the step's solve (factor_solve). */
 static int copy_factors(struct component_constraint *cc, klu_symbolic *symbolic,
                         klu_numeric *numeric, klu_common *common)
@@ -220,7 +229,7 @@ done:
     return rc;
 }
 
-/* x = Lambda^-1 b in place, with the copied factors: y = P (R \ b),
+/* x = S^-1 b in place, with the copied factors: y = P (R \ b),
  * L U z = y, x = Q z. Columns of L then of U (last first), each read once
  * in storage order. */
 static void factor_solve(struct component_constraint *cc, double *x)
@@ -245,13 +254,14 @@ static void factor_solve(struct component_constraint *cc, double *x)
         x[cc->column_order[k]] = y[k];
 }
 
-/* Factorizes Lambda_c (KLU with AMD, partial pivoting, no BTF), checks its
+/* Factorizes S_c (KLU with AMD, partial pivoting, no BTF), checks its
  * condition, copies the factors for the step's solves and checks them on
  * one right-hand side; KLU's own objects are freed after. */
 static int factorize(struct component_constraint *cc, char name)
 {
-    int n = cc->count, entries = cc->row_offset[n];
-    /* Lambda in CSC (the transpose of the CSR rows) */
+    int n = cc->count, entries = cc->s_offset[n];
+    /* S in CSC (the transpose of the CSR rows; S is symmetric, but its
+     * rows are summed in an order that may differ in the last bit) */
     int *column_offset = calloc((size_t)n + 1, sizeof(int));
     int *row = malloc(sizeof(int) * (size_t)(entries ? entries : 1));
     double *value = malloc(sizeof(double) * (size_t)(entries ? entries : 1));
@@ -263,14 +273,14 @@ static int factorize(struct component_constraint *cc, char name)
     GSN_CHECK_GOTO(column_offset && row && value && b, rc, GSN_ERR_MEMORY, done,
                    "out of memory");
     for (int e = 0; e < entries; ++e)
-        column_offset[cc->column[e] + 1]++;
+        column_offset[cc->s_column[e] + 1]++;
     for (int k = 0; k < n; ++k)
         column_offset[k + 1] += column_offset[k];
     for (int i = 0; i < n; ++i)
-        for (int e = cc->row_offset[i]; e < cc->row_offset[i + 1]; ++e) {
-            int at = column_offset[cc->column[e]]++;
+        for (int e = cc->s_offset[i]; e < cc->s_offset[i + 1]; ++e) {
+            int at = column_offset[cc->s_column[e]]++;
             row[at] = i;
-            value[at] = cc->entry[e];
+            value[at] = cc->s_entry[e];
         }
     for (int k = n; k > 0; --k)
         column_offset[k] = column_offset[k - 1];
@@ -285,7 +295,7 @@ static int factorize(struct component_constraint *cc, char name)
     numeric = klu_factor(column_offset, row, value, symbolic, &common);
     GSN_CHECK_GOTO(
         numeric && common.status == KLU_OK, rc, GSN_ERR_NUMERICAL, done,
-        "the %c boundary matrix Psi_K(X_J) of %d constrained particles "
+        "the %c boundary matrix C M^-1 C^T of %d constrained particles "
         "is singular (KLU status %d); check for duplicate boundary "
         "particles",
         name, n, common.status);
@@ -296,16 +306,16 @@ static int factorize(struct component_constraint *cc, char name)
                    "too badly conditioned (reciprocal condition %.3g)",
                    name, n, common.rcond);
     GSN_CALL_GOTO(copy_factors(cc, symbolic, numeric, &common), rc, done);
-    /* The copy solves Lambda x = b, b_i = 1 + i mod 7. */
+    /* The copy solves S x = b, b_i = 1 + i mod 7. */
     for (int i = 0; i < n; ++i)
         b[i] = 1.0 + i % 7;
     factor_solve(cc, b);
     double worst = 0.0;
     for (int i = 0; i < n; ++i) {
         double r = -(1.0 + i % 7), scale = 1.0 + i % 7;
-        for (int e = cc->row_offset[i]; e < cc->row_offset[i + 1]; ++e) {
-            r += cc->entry[e] * b[cc->column[e]];
-            scale += fabs(cc->entry[e] * b[cc->column[e]]);
+        for (int e = cc->s_offset[i]; e < cc->s_offset[i + 1]; ++e) {
+            r += cc->s_entry[e] * b[cc->s_column[e]];
+            scale += fabs(cc->s_entry[e] * b[cc->s_column[e]]);
         }
         worst = fmax(worst, fabs(r) / scale);
     }
@@ -324,6 +334,9 @@ done:
     return rc;
 }
 
+/* B_c, the rows of C_c (Psi_I(X_J) over every I) and their transpose by
+ * the touched particles; S_c is formed and factorized by
+ * gsn_constraints_set_mass. */
 static int component_build(struct gsn_constraints *k, int c,
                            const struct gsn_model *m,
                            const struct gsn_shape_rows *values,
@@ -352,55 +365,179 @@ static int component_build(struct gsn_constraints *k, int c,
             continue;
         cc->particle[s] = p;
         cc->velocity[s] = velocity_of[3 * p + c];
-        for (int e = values->offset[p]; e < values->offset[p + 1]; ++e)
-            cc->row_offset[s + 1] += k->slot[c][values->index[e]] >= 0;
+        cc->row_offset[s + 1] = values->offset[p + 1] - values->offset[p];
     }
     for (size_t s = 0; s < count; ++s)
         cc->row_offset[s + 1] += cc->row_offset[s];
     size_t entries = (size_t)cc->row_offset[count];
-    cc->column = malloc(sizeof(int) * (entries ? entries : 1));
-    cc->entry = malloc(sizeof(double) * (entries ? entries : 1));
-    GSN_CHECK(cc->column && cc->entry, GSN_ERR_MEMORY, "out of memory");
-    for (size_t s = 0; s < count; ++s) {
-        int p = cc->particle[s], at = cc->row_offset[s];
-        for (int e = values->offset[p]; e < values->offset[p + 1]; ++e) {
-            int column = k->slot[c][values->index[e]];
-            if (column < 0)
-                continue;
-            cc->column[at] = column;
-            cc->entry[at] = values->value[e];
-            at++;
-        }
-    }
-    cc->free_offset = calloc(count + 1, sizeof(int));
-    GSN_CHECK(cc->free_offset, GSN_ERR_MEMORY, "out of memory");
-    for (size_t s = 0; s < count; ++s) {
-        int p = cc->particle[s];
-        cc->free_offset[s + 1] = cc->free_offset[s] +
-                                 (values->offset[p + 1] - values->offset[p]) -
-                                 (cc->row_offset[s + 1] - cc->row_offset[s]);
-    }
-    size_t free_entries = (size_t)cc->free_offset[count];
-    cc->free_index = malloc(sizeof(int) * (free_entries ? free_entries : 1));
-    cc->free_value = malloc(sizeof(double) * (free_entries ? free_entries : 1));
-    GSN_CHECK(cc->free_index && cc->free_value, GSN_ERR_MEMORY,
+    cc->row_index = malloc(sizeof(int) * (entries ? entries : 1));
+    cc->row_value = malloc(sizeof(double) * (entries ? entries : 1));
+    int *position = calloc((size_t)n + 1, sizeof(int));
+    GSN_CHECK(cc->row_index && cc->row_value && position, GSN_ERR_MEMORY,
               "out of memory");
     for (size_t s = 0; s < count; ++s) {
-        int p = cc->particle[s], at = cc->free_offset[s];
-        for (int e = values->offset[p]; e < values->offset[p + 1]; ++e) {
-            if (k->slot[c][values->index[e]] >= 0)
-                continue;
-            cc->free_index[at] = values->index[e];
-            cc->free_value[at] = values->value[e];
-            at++;
+        int p = cc->particle[s], e0 = values->offset[p];
+        memcpy(cc->row_index + cc->row_offset[s], values->index + e0,
+               sizeof(int) * (size_t)(values->offset[p + 1] - e0));
+        memcpy(cc->row_value + cc->row_offset[s], values->value + e0,
+               sizeof(double) * (size_t)(values->offset[p + 1] - e0));
+    }
+    /* the transpose: position[I] = 1 + its place among the touched */
+    for (size_t e = 0; e < entries; ++e)
+        position[cc->row_index[e]] = 1;
+    for (int p = 0; p < n; ++p)
+        if (position[p])
+            position[p] = ++cc->touched_count;
+    size_t touched = (size_t)cc->touched_count;
+    cc->touched = malloc(sizeof(int) * touched);
+    cc->touched_inverse_mass = malloc(sizeof(double) * touched);
+    cc->touched_offset = calloc(touched + 1, sizeof(int));
+    cc->touched_row = malloc(sizeof(int) * (entries ? entries : 1));
+    cc->touched_value = malloc(sizeof(double) * (entries ? entries : 1));
+    int *fill = malloc(sizeof(int) * (touched + 1));
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(cc->touched && cc->touched_inverse_mass &&
+                       cc->touched_offset && cc->touched_row &&
+                       cc->touched_value && fill,
+                   rc, GSN_ERR_MEMORY, done, "out of memory");
+    for (int p = 0; p < n; ++p)
+        if (position[p])
+            cc->touched[position[p] - 1] = p;
+    for (size_t e = 0; e < entries; ++e)
+        cc->touched_offset[position[cc->row_index[e]]]++;
+    for (size_t t = 0; t < touched; ++t)
+        cc->touched_offset[t + 1] += cc->touched_offset[t];
+    memcpy(fill, cc->touched_offset, sizeof(int) * touched);
+    for (size_t s = 0; s < count; ++s) /* rows ascending in each column */
+        for (int e = cc->row_offset[s]; e < cc->row_offset[s + 1]; ++e) {
+            int at = fill[position[cc->row_index[e]] - 1]++;
+            cc->touched_row[at] = (int)s;
+            cc->touched_value[at] = cc->row_value[e];
+        }
+done:
+    free(fill);
+    free(position);
+    return rc;
+}
+
+/* S_c = C_c M^-1 C_c^T: row s sums, over the particles I of row s of C,
+ * Psi_I(X_J) Psi_I(X_K) / m_I into the columns K that touch I. */
+static int component_factorize(struct component_constraint *cc,
+                               const double *mass, char name)
+{
+    int n = cc->count;
+    for (int t = 0; t < cc->touched_count; ++t)
+        cc->touched_inverse_mass[t] = 1.0 / mass[cc->touched[t]];
+    double *dense = calloc((size_t)n, sizeof(double));
+    int *mark = malloc(sizeof(int) * (size_t)n);
+    int *list = malloc(sizeof(int) * (size_t)n);
+    /* the touched index of each entry of C, by binary search once */
+    size_t entries = (size_t)cc->row_offset[n];
+    int *entry_touched = malloc(sizeof(int) * (entries ? entries : 1));
+    cc->s_offset = calloc((size_t)n + 1, sizeof(int));
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(dense && mark && list && entry_touched && cc->s_offset, rc,
+                   GSN_ERR_MEMORY, done, "out of memory");
+    for (size_t e = 0; e < entries; ++e) {
+        int lo = 0, hi = cc->touched_count - 1, I = cc->row_index[e];
+        while (lo < hi) {
+            int mid = (lo + hi) / 2;
+            if (cc->touched[mid] < I)
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        entry_touched[e] = lo;
+    }
+    for (int i = 0; i < n; ++i)
+        mark[i] = -1;
+    size_t capacity = 0, used = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+        used = 0;
+        for (int s = 0; s < n; ++s) {
+            int listed = 0;
+            for (int e = cc->row_offset[s]; e < cc->row_offset[s + 1]; ++e) {
+                int t = entry_touched[e];
+                double a = cc->row_value[e] * cc->touched_inverse_mass[t];
+                for (int k = cc->touched_offset[t];
+                     k < cc->touched_offset[t + 1]; ++k) {
+                    int column = cc->touched_row[k];
+                    if (mark[column] != s) {
+                        mark[column] = s;
+                        list[listed++] = column;
+                        dense[column] = 0.0;
+                    }
+                    dense[column] += a * cc->touched_value[k];
+                }
+            }
+            if (pass == 1)
+                for (int l = 0; l < listed; ++l) {
+                    cc->s_column[used + (size_t)l] = list[l];
+                    cc->s_entry[used + (size_t)l] = dense[list[l]];
+                }
+            used += (size_t)listed;
+            cc->s_offset[s + 1] = (int)used;
+        }
+        if (pass == 0) {
+            capacity = used;
+            cc->s_column = malloc(sizeof(int) * (capacity ? capacity : 1));
+            cc->s_entry = malloc(sizeof(double) * (capacity ? capacity : 1));
+            GSN_CHECK_GOTO(cc->s_column && cc->s_entry, rc, GSN_ERR_MEMORY,
+                           done, "out of memory");
+            for (int i = 0; i < n; ++i)
+                mark[i] = -1;
         }
     }
-    GSN_CALL(factorize(cc, component_names[c]));
+    rc = factorize(cc, name);
+done:
+    free(dense);
+    free(mark);
+    free(list);
+    free(entry_touched);
+    return rc;
+}
+
+int gsn_constraints_set_mass(struct gsn_constraints *constraints,
+                             const double *mass)
+{
+    for (int c = 0; c < 3; ++c)
+        if (constraints->component[c].count > 0)
+            GSN_CALL(component_factorize(&constraints->component[c], mass,
+                                         component_names[c]));
+    constraints->factorized = 1;
     return GSN_OK;
 }
 
+/* The prescriptions of case `given` on model m (symmetry entries resolved):
+ * entry_of and velocity_of per particle and component (collect_
+ * prescriptions), and per model surface the components its entry holds
+ * and that entry's index (both arrays surface_count + 1, zeroed). */
+static int prescribe(const struct gsn_model *m, const struct gsn_case *given,
+                     const unsigned *released, int *entry_of,
+                     double *velocity_of, int *surface_mask,
+                     int *surface_entry)
+{
+    /* symmetry planes hold their normal component: a copy with it fixed */
+    struct gsn_case *c = malloc(sizeof *c);
+    GSN_CHECK(c, GSN_ERR_MEMORY, "out of memory");
+    *c = *given;
+    int rc = gsn_case_resolve_symmetry(c, m);
+    if (rc == GSN_OK)
+        rc = collect_prescriptions(m, c, released, entry_of, velocity_of);
+    for (int b = 0; rc == GSN_OK && b < c->boundary_count; ++b) {
+        int surface = gsn_model_find_surface(m, c->boundaries[b].name);
+        surface_entry[surface] = b;
+        for (int comp = 0; comp < 3; ++comp)
+            if (c->boundaries[b].fixed[comp] ||
+                c->boundaries[b].has_velocity[comp])
+                surface_mask[surface] |= 1 << comp;
+    }
+    free(c);
+    return rc;
+}
+
 int gsn_constraints_create(const struct gsn_model *m,
-                           const struct gsn_case *given,
+                           const struct gsn_case *c,
                            const struct gsn_shape_rows *values,
                            const unsigned *released,
                            struct gsn_constraints **out)
@@ -414,13 +551,9 @@ int gsn_constraints_create(const struct gsn_model *m,
     if (k)
         k->entry_of = entry_of;
     double *velocity_of = malloc(sizeof(double) * 3 * (n ? n : 1));
-    /* symmetry planes hold their normal component: a copy with it fixed */
-    struct gsn_case *c = malloc(sizeof *c);
     int rc = GSN_OK;
-    GSN_CHECK_GOTO(k && entry_of && velocity_of && c, rc, GSN_ERR_MEMORY, done,
+    GSN_CHECK_GOTO(k && entry_of && velocity_of, rc, GSN_ERR_MEMORY, done,
                    "out of memory");
-    *c = *given;
-    GSN_CALL_GOTO(gsn_case_resolve_symmetry(c, m), rc, done);
     k->particle_count = m->particle_count;
     k->ramp = c->time_ramp;
     k->surface_count = m->surface_count;
@@ -433,16 +566,9 @@ int gsn_constraints_create(const struct gsn_model *m,
         GSN_CHECK_GOTO(k->released, rc, GSN_ERR_MEMORY, done, "out of memory");
         memcpy(k->released, released, sizeof(unsigned) * n);
     }
-    GSN_CALL_GOTO(collect_prescriptions(m, c, released, entry_of, velocity_of),
+    GSN_CALL_GOTO(prescribe(m, c, released, entry_of, velocity_of,
+                            k->surface_mask, k->surface_entry),
                   rc, done);
-    for (int b = 0; b < c->boundary_count; ++b) {
-        int surface = gsn_model_find_surface(m, c->boundaries[b].name);
-        k->surface_entry[surface] = b;
-        for (int comp = 0; comp < 3; ++comp)
-            if (c->boundaries[b].fixed[comp] ||
-                c->boundaries[b].has_velocity[comp])
-                k->surface_mask[surface] |= 1 << comp;
-    }
     for (int comp = 0; comp < 3; ++comp)
         GSN_CALL_GOTO(
             component_build(k, comp, m, values, entry_of, velocity_of), rc,
@@ -451,10 +577,54 @@ done:
     if (!k)
         free(entry_of);
     free(velocity_of);
-    free(c);
     if (rc != GSN_OK)
         gsn_constraints_destroy(&k);
     *out = k;
+    return rc;
+}
+
+int gsn_constraints_held(const struct gsn_model *m, const struct gsn_case *c,
+                         const unsigned *released, int **facet_mask,
+                         int **particle_mask)
+{
+    size_t n = (size_t)m->particle_count;
+    *facet_mask = calloc((size_t)m->facet_count + 1, sizeof(int));
+    *particle_mask = calloc(n + 1, sizeof(int));
+    int *entry_of = malloc(sizeof(int) * 3 * (n + 1));
+    double *velocity_of = malloc(sizeof(double) * 3 * (n + 1));
+    int *surface_mask = calloc((size_t)m->surface_count + 1, sizeof(int));
+    int *surface_entry = calloc((size_t)m->surface_count + 1, sizeof(int));
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(*facet_mask && *particle_mask && entry_of && velocity_of &&
+                       surface_mask && surface_entry,
+                   rc, GSN_ERR_MEMORY, done, "out of memory");
+    GSN_CALL_GOTO(prescribe(m, c, released, entry_of, velocity_of,
+                            surface_mask, surface_entry),
+                  rc, done);
+    for (size_t p = 0; p < n; ++p)
+        for (int k = 0; k < 3; ++k)
+            if (entry_of[3 * p + k] >= 0)
+                (*particle_mask)[p] |= 1 << k;
+    for (int f = 0; f < m->facet_count; ++f) {
+        int s = m->facet_surface[f], owner = m->facet_owner[f];
+        if (m->facet_neighbour[f] >= 0 || s < 0 || s >= m->surface_count)
+            continue;
+        /* a released owner's facets hold nothing (gsn_constraints_facet_
+         * mask) */
+        if (released && released[owner] >> surface_entry[s] & 1u)
+            continue;
+        (*facet_mask)[f] = surface_mask[s];
+    }
+done:
+    free(entry_of);
+    free(velocity_of);
+    free(surface_mask);
+    free(surface_entry);
+    if (rc != GSN_OK) {
+        free(*facet_mask);
+        free(*particle_mask);
+        *facet_mask = *particle_mask = NULL;
+    }
     return rc;
 }
 
@@ -481,32 +651,42 @@ int gsn_constraints_ramping(const struct gsn_constraints *constraints,
     return time < constraints->ramp;
 }
 
-/* Component c of gsn_constraints_apply. */
+/* Component c of gsn_constraints_apply: S lambda = target - C f, then
+ * f += M^-1 C^T lambda (and force = C^T lambda where asked). */
 static void component_apply(struct gsn_constraints *constraints, int c,
-                            double factor, double *field)
+                            double factor, double *field, double *force)
 {
     struct component_constraint *cc = &constraints->component[c];
     for (int s = 0; s < cc->count; ++s) {
         double target = cc->velocity[s] * factor;
-        for (int e = cc->free_offset[s]; e < cc->free_offset[s + 1]; ++e)
-            target -= cc->free_value[e] * field[3 * cc->free_index[e] + c];
+        for (int e = cc->row_offset[s]; e < cc->row_offset[s + 1]; ++e)
+            target -= cc->row_value[e] * field[3 * cc->row_index[e] + c];
         cc->rhs[s] = target;
     }
     factor_solve(cc, cc->rhs);
-    for (int s = 0; s < cc->count; ++s)
-        field[3 * cc->particle[s] + c] = cc->rhs[s];
+    for (int t = 0; t < cc->touched_count; ++t) {
+        double f = 0.0;
+        for (int k = cc->touched_offset[t]; k < cc->touched_offset[t + 1]; ++k)
+            f += cc->touched_value[k] * cc->rhs[cc->touched_row[k]];
+        size_t at = 3 * (size_t)cc->touched[t] + (size_t)c;
+        field[at] += f * cc->touched_inverse_mass[t];
+        if (force)
+            force[at] = f;
+    }
 }
 
 int gsn_constraints_apply(struct gsn_constraints *constraints,
                           const struct gsn_shape_rows *values,
                           enum gsn_constraint_field kind, double time,
-                          double *field)
+                          double *field, double *force)
 {
-    /* The components read and write only their own column of field, and
-     * each has its own work array: they run in parallel, the same bits on
-     * any thread count. */
+    /* The components read and write only their own column of field and
+     * force, and each has its own work array: they run in parallel, the
+     * same bits on any thread count. */
     GSN_CHECK(values->row_count == constraints->particle_count,
               GSN_ERR_INTERNAL, "shape values are not one row per particle");
+    GSN_CHECK(constraints->factorized, GSN_ERR_INTERNAL,
+              "the constraints have no mass (gsn_constraints_set_mass)");
     double factor = gsn_ramp_factor(constraints->ramp, kind, time);
     if (kind == GSN_FIELD_DISPLACEMENT)
         factor -= gsn_ramp_factor(constraints->ramp, kind, constraints->epoch);
@@ -517,7 +697,35 @@ int gsn_constraints_apply(struct gsn_constraints *constraints,
                                   1) if (work >= CONSTRAINT_PARALLEL_MIN)
     for (int c = 0; c < 3; ++c)
         if (constraints->component[c].count > 0)
-            component_apply(constraints, c, factor, field);
+            component_apply(constraints, c, factor, field, force);
+    return GSN_OK;
+}
+
+int gsn_constraints_multipliers(struct gsn_constraints *constraints,
+                                const double *force, double *multiplier)
+{
+    GSN_CHECK(constraints->factorized, GSN_ERR_INTERNAL,
+              "the constraints have no mass (gsn_constraints_set_mass)");
+    memset(multiplier, 0,
+           sizeof(double) * 3 * (size_t)constraints->particle_count);
+    for (int c = 0; c < 3; ++c) {
+        struct component_constraint *cc = &constraints->component[c];
+        if (cc->count == 0)
+            continue;
+        /* S lambda = C M^-1 (C^T lambda) */
+        for (int s = 0; s < cc->count; ++s)
+            cc->rhs[s] = 0.0;
+        for (int t = 0; t < cc->touched_count; ++t) {
+            double g = force[3 * (size_t)cc->touched[t] + (size_t)c] *
+                       cc->touched_inverse_mass[t];
+            for (int k = cc->touched_offset[t]; k < cc->touched_offset[t + 1];
+                 ++k)
+                cc->rhs[cc->touched_row[k]] += cc->touched_value[k] * g;
+        }
+        factor_solve(cc, cc->rhs);
+        for (int s = 0; s < cc->count; ++s)
+            multiplier[3 * (size_t)cc->particle[s] + (size_t)c] = cc->rhs[s];
+    }
     return GSN_OK;
 }
 
@@ -572,4 +780,33 @@ int gsn_constraints_surface_mask(const struct gsn_constraints *constraints,
     if (surface < 0 || surface >= constraints->surface_count)
         return 0;
     return constraints->surface_mask[surface];
+}
+
+int gsn_constraints_discretize(const struct gsn_model *m,
+                               const struct gsn_case *c,
+                               const struct gsn_kernel_options *options,
+                               const double *background_cells,
+                               int background_cell_count,
+                               const unsigned *released,
+                               struct gsn_quadrature **quadrature,
+                               struct gsn_constraints **constraints)
+{
+    *quadrature = NULL;
+    *constraints = NULL;
+    struct gsn_kernel_options kernel = *options;
+    int *held_facet = NULL, *held_particle = NULL;
+    int rc = gsn_constraints_held(m, c, released, &held_facet, &held_particle);
+    kernel.held_facet = held_facet;
+    kernel.held_particle = held_particle;
+    if (rc == GSN_OK)
+        rc = gsn_quadrature_create(m, &kernel, background_cells,
+                                   background_cell_count, quadrature);
+    free(held_facet);
+    free(held_particle);
+    if (rc == GSN_OK)
+        rc = gsn_constraints_create(m, c, &(*quadrature)->particle_values,
+                                    released, constraints);
+    if (rc != GSN_OK)
+        gsn_quadrature_destroy(quadrature);
+    return rc;
 }

@@ -4,14 +4,16 @@
  * so fixing d_J would not fix u(X_J).
  *
  * For each component c, B_c is the set of particles with c constrained and
- * Lambda_c[J][K] = Psi_K(X_J) for J, K in B_c, factorized once (KLU; its
- * factors copied into plain arrays, so the solve of every step reads each
- * factor once in storage order: 2.5x faster than klu_solve). After
- * each unconstrained update, the coefficients of B_c alone are corrected so
- * that sum_I Psi_I(X_J) f_Ic equals the prescribed value at every J in B_c:
- * the mixed transformation of Chen & Wang (2000) restricted to the boundary.
- * The same correction is applied to displacements, velocities and
- * accelerations. */
+ * C_c the rows Psi_I(X_J), J in B_c, over all I: the constraints read
+ * C_c f_c = prescribed. Every correction is the mass-orthogonal projection
+ * onto them, f += M^-1 C^T lambda with (C M^-1 C^T) lambda = prescribed -
+ * C f (S_c = C M^-1 C^T factorized once, KLU; its factors copied into plain
+ * arrays that the solve of every step reads once in storage order). On
+ * the accelerations, C^T lambda is the force the supports apply: it does
+ * no work on a motion the constraints allow, so the discrete system keeps
+ * the symmetry of its stiffness and mass (docs/solver.md, "Boundary
+ * values"). The same correction is applied to displacements, velocities
+ * and accelerations. */
 #ifndef GEOSCNI_CONSTRAINT_H
 #define GEOSCNI_CONSTRAINT_H
 
@@ -55,8 +57,8 @@ int gsn_constraints_ramping(const struct gsn_constraints *constraints,
 /* Collects the constrained particles of every boundary entry of the case
  * (each entry must name a surface of the model), checks that no particle
  * gets two different prescriptions for one component (a symmetry entry
- * holds the component normal to its plane, gsn_case_resolve_symmetry), and
- * factorizes Lambda_c. values: Psi_I(X_J), one row per particle J.
+ * holds the component normal to its plane, gsn_case_resolve_symmetry) and
+ * the rows C_c. values: Psi_I(X_J), one row per particle J.
  * released (NULL: none): per particle, a bit mask of the entries that do
  * not hold it although it lies on their surface (a rigid body's particle
  * that has left its base, contact.h). */
@@ -72,17 +74,53 @@ int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
 int gsn_constraints_facet_mask(const struct gsn_constraints *constraints,
                                int surface, int owner);
 
+/* The quadrature of model m with the held facets of case c
+ * (gsn_constraints_held, into a copy of options), then the constraints on
+ * its shape values: the build every solver of a case goes through. */
+int gsn_constraints_discretize(const struct gsn_model *m,
+                               const struct gsn_case *c,
+                               const struct gsn_kernel_options *options,
+                               const double *background_cells,
+                               int background_cell_count,
+                               const unsigned *released,
+                               struct gsn_quadrature **quadrature,
+                               struct gsn_constraints **constraints);
+
 /* Frees; NULL-safe, nulls the handle. */
 void gsn_constraints_destroy(struct gsn_constraints **constraints);
 
-/* Corrects field (n x 3 coefficients) in place so that the prescribed
- * values hold at time t at every constrained particle. values: the rows
- * given to gsn_constraints_create (whose entries were taken from them
- * once, at create). */
+/* Forms and factorizes S_c = C_c M^-1 C_c^T with the lumped masses (n,
+ * kg); before any gsn_constraints_apply. */
+int gsn_constraints_set_mass(struct gsn_constraints *constraints,
+                             const double *mass);
+
+/* Corrects field (n x 3 coefficients) in place, by the mass-orthogonal
+ * projection, so that the prescribed values hold at time t at every
+ * constrained particle. force (NULL: not wanted): where the correction
+ * reaches, M times it, C^T lambda (for accelerations, the reaction in N);
+ * left as it was elsewhere. values: the rows given to
+ * gsn_constraints_create (whose entries were taken from them once). */
 int gsn_constraints_apply(struct gsn_constraints *constraints,
                           const struct gsn_shape_rows *values,
                           enum gsn_constraint_field kind, double time,
-                          double *field);
+                          double *field, double *force);
+
+/* The multipliers lambda (n x 3, 0 where not constrained) whose C^T lambda
+ * is force (n x 3): the force each constrained particle's prescription
+ * applies (N, for a reaction force); they add up to the resultant of
+ * force by the partition of unity. */
+int gsn_constraints_multipliers(struct gsn_constraints *constraints,
+                                const double *force, double *multiplier);
+
+/* What the boundary entries of case c hold on model m, before any shape
+ * function exists: per facet the components held on it (a boundary facet
+ * of a surface with an essential entry, unless its owner is released
+ * there; 0 elsewhere) and per particle the components held at it (bit k:
+ * component k). Both arrays allocated, the caller frees them; they go to
+ * gsn_kernel_options.held_facet / held_particle. */
+int gsn_constraints_held(const struct gsn_model *m, const struct gsn_case *c,
+                         const unsigned *released, int **facet_mask,
+                         int **particle_mask);
 
 /* 1 if component k of particle I is constrained. */
 int gsn_constraints_is_constrained(const struct gsn_constraints *constraints,

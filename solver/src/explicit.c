@@ -75,7 +75,6 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
                         e->f_ext_full,
                         e->f_int,
                         e->reaction,
-                        e->boundary_force,
                         e->stress,
                         e->state,
                         e->previous_displacement,
@@ -96,11 +95,6 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     free(e->displacement_gradient);
     free(e->slot_force);
     gsn_point_blocks_destroy(&e->blocks);
-    free(e->boundary_point_mask);
-    free(e->boundary_traction);
-    free(e->boundary_entry_offset);
-    free(e->boundary_entry_value);
-    free(e->boundary_entry_point);
     free(e->domain_offset);
     free(e->domain_point);
     free(e->domain_weight);
@@ -110,52 +104,6 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     free(e->point_dead);
     free(e);
     *handle = NULL;
-}
-
-/* The constrained components at every boundary quadrature point. */
-static int build_boundary_masks(struct gsn_explicit *e)
-{
-    const struct gsn_quadrature *q = e->quadrature;
-    const struct gsn_shape_rows *values = &q->boundary_values;
-    int n = e->particle_count, nb = q->boundary_point_count;
-    GSN_CALL(
-        alloc_array((void **)&e->boundary_point_mask, (size_t)nb, sizeof(int)));
-    GSN_CALL(alloc_array((void **)&e->boundary_traction, 3 * (size_t)nb,
-                         sizeof(double)));
-    GSN_CALL(alloc_array((void **)&e->boundary_entry_offset, (size_t)n + 1,
-                         sizeof(int)));
-    for (int b = 0; b < nb && e->constraints; ++b) {
-        int facet = q->boundary_point_facet[b];
-        e->boundary_point_mask[b] = gsn_constraints_facet_mask(
-            e->constraints, e->model->facet_surface[facet],
-            e->model->facet_owner[facet]);
-    }
-    /* The entries of constrained boundary points by particle, in boundary
-     * point order: boundary_term gathers them in parallel and adds in the
-     * order of the serial scatter. */
-    for (int b = 0; b < nb; ++b)
-        for (int k = values->offset[b];
-             e->boundary_point_mask[b] && k < values->offset[b + 1]; ++k)
-            e->boundary_entry_offset[values->index[k] + 1]++;
-    for (int i = 0; i < n; ++i)
-        e->boundary_entry_offset[i + 1] += e->boundary_entry_offset[i];
-    size_t entries = (size_t)e->boundary_entry_offset[n];
-    GSN_CALL(alloc_array((void **)&e->boundary_entry_value, entries,
-                         sizeof(double)));
-    GSN_CALL(
-        alloc_array((void **)&e->boundary_entry_point, entries, sizeof(int)));
-    int *fill = NULL;
-    GSN_CALL(alloc_array((void **)&fill, (size_t)n + 1, sizeof(int)));
-    memcpy(fill, e->boundary_entry_offset, sizeof(int) * (size_t)n);
-    for (int b = 0; b < nb; ++b)
-        for (int k = values->offset[b];
-             e->boundary_point_mask[b] && k < values->offset[b + 1]; ++k) {
-            int at = fill[values->index[k]]++;
-            e->boundary_entry_value[at] = values->value[k];
-            e->boundary_entry_point[at] = b;
-        }
-    free(fill);
-    return GSN_OK;
 }
 
 /* sum_p P_p over the points of the nodal domain of particle `cell` (P
@@ -193,41 +141,6 @@ static void boundary_traction(const struct gsn_explicit *e, int b, double t[3])
                (P[3 * i] * N[0] + P[3 * i + 1] * N[1] + P[3 * i + 2] * N[2]);
 }
 
-/* The boundary term of the weak form on constrained surfaces (explicit.h):
- * force_I = sum_q Psi_I(x_q) t w_q for the constrained components, to be
- * taken off f_int. Each particle adds its entries in boundary point order:
- * the sums of a serial scatter, whatever the thread count. */
-static void boundary_term(const struct gsn_explicit *e, double *force)
-{
-    const struct gsn_quadrature *q = e->quadrature;
-    double *t = e->boundary_traction;
-    int parallel = parallel_worth(q->boundary_point_count);
-#pragma omp parallel if (parallel)
-    {
-#pragma omp for
-        for (int b = 0; b < q->boundary_point_count; ++b)
-            if (e->boundary_point_mask[b])
-                boundary_traction(e, b, &t[3 * b]);
-                /* force_I = sum_q Psi_I(x_q) t w_q, gathered per particle in
-                 * boundary point order (the order of a serial scatter). */
-#pragma omp for
-        for (int I = 0; I < e->particle_count; ++I) {
-            double f[3] = {0.0, 0.0, 0.0};
-            for (int j = e->boundary_entry_offset[I];
-                 j < e->boundary_entry_offset[I + 1]; ++j) {
-                int b = e->boundary_entry_point[j];
-                int mask = e->boundary_point_mask[b];
-                double w = q->boundary_point_weight[b];
-                double value = e->boundary_entry_value[j];
-                for (int i = 0; i < 3; ++i)
-                    if (mask & (1 << i))
-                        f[i] += value * t[3 * b + i] * w;
-            }
-            memcpy(&force[3 * (size_t)I], f, sizeof f);
-        }
-    }
-}
-
 void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
                                 int mask, double force[3])
 {
@@ -239,7 +152,12 @@ void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
         double t[3];
         boundary_traction(e, b, t);
         /* a released particle's facets hold nothing (constraint.h) */
-        int held = e->constraints ? mask & e->boundary_point_mask[b] : mask;
+        int facet = q->boundary_point_facet[b];
+        int held = e->constraints
+                       ? mask & gsn_constraints_facet_mask(
+                                    e->constraints, e->model->facet_surface[facet],
+                                    e->model->facet_owner[facet])
+                       : mask;
         for (int i = 0; i < 3; ++i)
             if (held & (1 << i))
                 force[i] += t[i] * q->boundary_point_weight[b];
@@ -426,7 +344,6 @@ int gsn_explicit_create(const struct gsn_model *m,
         {(void **)&e->f_ext_full, n3, sizeof(double)},
         {(void **)&e->f_int, n3, sizeof(double)},
         {(void **)&e->reaction, n3, sizeof(double)},
-        {(void **)&e->boundary_force, n3, sizeof(double)},
         {(void **)&e->stress, 6 * points, sizeof(double)},
         {(void **)&e->state, main * (size_t)e->state_size, sizeof(double)},
         {(void **)&e->previous_displacement, n3, sizeof(double)},
@@ -491,8 +408,9 @@ int gsn_explicit_create(const struct gsn_model *m,
         for (int a = 0; a < 9; ++a)
             e->reference_gradient[9 * p + a] = a % 4 == 0 ? 1.0 : 0.0;
     }
-    GSN_CALL_GOTO(build_boundary_masks(e), rc, fail);
     GSN_CALL_GOTO(build_mass(e), rc, fail);
+    if (constraints)
+        GSN_CALL_GOTO(gsn_constraints_set_mass(constraints, e->mass), rc, fail);
     GSN_CALL_GOTO(build_domains(e), rc, fail);
     GSN_CALL_GOTO(gsn_material_initialize(material, main, e->stress, e->state),
                   rc, fail);
@@ -511,11 +429,10 @@ static inline double contact_force(const struct gsn_explicit *e, int i)
 }
 
 /* Component i of the external force on the body that W_ext integrates:
- * the dead loads, the contact, the reactions and the boundary term. */
+ * the dead loads, the contact and the reactions. */
 static inline double external_force(const struct gsn_explicit *e, int i)
 {
-    return e->f_ext[i] + contact_force(e, i) + e->reaction[i] +
-           e->boundary_force[i];
+    return e->f_ext[i] + contact_force(e, i) + e->reaction[i];
 }
 
 /* The external force of the present state, the start of the next step's
@@ -1084,8 +1001,6 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
                 P[a] *= w[p];
         }
     }
-    if (!e->skip_boundary_term)
-        boundary_term(e, e->boundary_force);
     GSN_CALL(contact_forces(e, e->time));
     store_previous_external(e);
     return GSN_OK;
@@ -1211,8 +1126,8 @@ static void predict_displacement(struct gsn_explicit *e, int i0, int i1,
     }
 }
 
-/* a_{n+1} = M^-1 (f_ext - f_int) (eq. (32)) with the boundary term taken
- * off f_int, and the local damping on free components (explicit.h). */
+/* a_{n+1} = M^-1 (f_ext - f_int) (eq. (32)), with the local damping on
+ * free components (explicit.h); the constraints correct it after. */
 static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
                               struct gsn_step_sums *sums)
 {
@@ -1221,8 +1136,6 @@ static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
     for (int i = i0; i < i1; ++i) {
         for (int k = 0; k < 3; ++k) {
             int at = 3 * i + k;
-            if (!e->skip_boundary_term)
-                e->f_int[at] -= e->boundary_force[at];
             double f = e->f_ext[at] + contact_force(e, at) - e->f_int[at];
             if (e->damping_local > 0.0) {
                 double damping = 0.0;
@@ -1260,19 +1173,15 @@ static void new_velocities(struct gsn_explicit *e, int i0, int i1,
     }
 }
 
-/* Reactions M a - f_ext + f_int at constrained components, the external
- * work (trapezoid), the kinetic energy, and a check that v is finite. */
+/* The external work (trapezoid; the reactions C^T lambda come from the
+ * constraints' correction of a), the kinetic energy, and a check that v
+ * is finite. */
 static void reactions_and_energies(struct gsn_explicit *e, int i0, int i1,
                                    struct gsn_step_sums *sums)
 {
     for (int i = i0; i < i1; ++i) {
         for (int k = 0; k < 3; ++k) {
             int at = 3 * i + k;
-            e->reaction[at] = e->constrained[i] & (1 << k)
-                                  ? e->mass[i] * e->acceleration[at] -
-                                        e->f_ext[at] - contact_force(e, at) +
-                                        e->f_int[at]
-                                  : 0.0;
             double total = external_force(e, at);
             sums->external +=
                 0.5 * (e->previous_external[at] + total) *
@@ -1315,7 +1224,7 @@ int gsn_explicit_step(struct gsn_explicit *e)
     if (e->constraints && refresh)
         GSN_CALL(gsn_constraints_apply(
             e->constraints, &e->quadrature->particle_values,
-            GSN_FIELD_DISPLACEMENT, t1, e->displacement));
+            GSN_FIELD_DISPLACEMENT, t1, e->displacement, NULL));
     phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
 
     GSN_CALL(gsn_explicit_update_stress(e));
@@ -1323,22 +1232,20 @@ int gsn_explicit_step(struct gsn_explicit *e)
     GSN_CALL(contact_forces(e, t1));
     phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
 
-    if (!e->skip_boundary_term)
-        boundary_term(e, e->boundary_force);
-    phase_end(e, GSN_PHASE_BOUNDARY_TERM, &mark);
     double dissipated = step_loop(e, n, new_accelerations).dissipated;
     phase_end(e, GSN_PHASE_UPDATES, &mark);
     if (e->constraints)
         GSN_CALL(gsn_constraints_apply(
             e->constraints, &e->quadrature->particle_values,
-            GSN_FIELD_ACCELERATION, t1, e->new_acceleration));
+            GSN_FIELD_ACCELERATION, t1, e->new_acceleration, e->reaction));
     phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
     step_loop(e, n, new_velocities);
     phase_end(e, GSN_PHASE_UPDATES, &mark);
     if (e->constraints && refresh)
         GSN_CALL(gsn_constraints_apply(e->constraints,
                                        &e->quadrature->particle_values,
-                                       GSN_FIELD_VELOCITY, t1, e->velocity));
+                                       GSN_FIELD_VELOCITY, t1, e->velocity,
+                                       NULL));
     phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
 
     struct gsn_step_sums sums = step_loop(e, n, reactions_and_energies);
@@ -1601,12 +1508,12 @@ int gsn_explicit_settle(struct gsn_explicit *e)
     if (e->constraints) {
         GSN_CALL(gsn_constraints_apply(
             e->constraints, &e->quadrature->particle_values, GSN_FIELD_VELOCITY,
-            e->time, e->velocity));
+            e->time, e->velocity, NULL));
         GSN_CALL(gsn_constraints_apply(
             e->constraints, &e->quadrature->particle_values,
-            GSN_FIELD_DISPLACEMENT, e->time, e->displacement));
+            GSN_FIELD_DISPLACEMENT, e->time, e->displacement, NULL));
     }
-    GSN_CALL(gsn_explicit_refresh(e)); /* P, the boundary term */
+    GSN_CALL(gsn_explicit_refresh(e)); /* P */
 #pragma omp parallel if (parallel_worth(e->point_count))
     {
 #pragma omp for schedule(dynamic, 2)
@@ -1624,7 +1531,8 @@ int gsn_explicit_settle(struct gsn_explicit *e)
     if (e->constraints)
         GSN_CALL(gsn_constraints_apply(
             e->constraints, &e->quadrature->particle_values,
-            GSN_FIELD_ACCELERATION, e->time, e->new_acceleration));
+            GSN_FIELD_ACCELERATION, e->time, e->new_acceleration,
+            e->reaction));
     memcpy(e->acceleration, e->new_acceleration,
            sizeof(double) * 3 * (size_t)n);
     /* reactions and the kinetic energy; the external force of this state

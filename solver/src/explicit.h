@@ -3,7 +3,7 @@
  *
  * Per step, from d_n, v_n, a_n:
  *   d_{n+1} = d_n + dt v_n + dt^2/2 a_n                       eq. (33)
- *   boundary coefficients corrected so u(X_J) holds exactly  (constraint.h)
+ *   d corrected so u(X_J) holds exactly (constraint.h; every 64 steps)
  *   one pass over the gradient rows, block by block (point_blocks.h):
  *     dH = sum_I (d_I - d_I^n) (x) grad_X Psi_I(X_p), H_{n+1} = H_n + dH,
  *     F = I + H                                              eq. (21)
@@ -18,6 +18,8 @@
  *   any number of threads):
  *     f_int_I = sum_p P_p grad_X Psi_I(X_p)                   eq. (29)
  *     a_{n+1} = M^-1 (f_ext - f_int)                          eq. (32)
+ *   a_{n+1} projected, mass-orthogonally, onto the constraints: the
+ *   correction M^-1 C^T lambda, C^T lambda the reaction (constraint.h)
  *   v_{n+1} = v_n + dt/2 (a_n + a_{n+1})                      eq. (34)
  * with the row-sum lumped mass m_I = rho0 sum_p Psi_I(x_p) w_p over the
  * main points (eq. (28); sum_L Psi_I(X_L) V_L with nodal integration) and
@@ -26,21 +28,20 @@
  * Integration points: the main points are the nodal points (point L is
  * particle L) or Gauss points, each with its own stress, H and material
  * state; MSCNI adds stabilization points to nodal points. What a particle
- * reports (stress, damage, plastic strain) and what the boundary term
- * reads is the weighted mean over its nodal domain's points (domain_point
+ * reports (stress, damage, plastic strain) is the weighted mean over its nodal domain's points (domain_point
  * below): its own nodal point, bit for bit, with nodal integration.
  *
  * Constrained boundaries: RK test functions do not vanish on a surface whose
- * displacement is prescribed, so the weak form keeps its boundary term
- * -int_{Gamma_u} Psi_I t dS with t = sigma n, evaluated on the boundary
- * facets' quadrature points from the stress of the facet's nodal domain,
- * for the constrained components. Without it the particles near a
- * constrained surface feel the surface's traction flux and a linear field
- * is not an exact solution (2% error measured on the essential-boundary
- * patch test); with it the patch test is exact (seed eq. (24) then holds
- * for every test function, not only for those whose support misses the
- * boundary). The reaction on a surface is the resultant of the same
- * tractions.
+ * displacement is prescribed, so the weak form has a boundary term
+ * int_{Gamma_u} Psi_I t dS. On the held facets the smoothing integrates
+ * the interpolant of Psi_I through the held particles
+ * (gsn_kernel_options.held_facet), which makes that term a combination
+ * sum_J Psi_I(X_J) lambda_J of the constraints' rows: the mass-orthogonal
+ * projection of the accelerations takes it up as the reaction C^T lambda,
+ * and the linear patch test is exact with a symmetric operator (the
+ * stiffness sum_p B_p^T C B_p w_p on the constrained motions; docs/solver.md,
+ * "Boundary values"). The reaction on a surface is the sum of its
+ * particles' lambda_J (gsn_constraints_multipliers).
  *
  * Local damping (Cundall 1987, as in FLAC and most MPM codes), optional:
  * on every free component the unbalanced force f = f_ext - f_int gets
@@ -65,7 +66,6 @@ extern "C" {
 enum gsn_explicit_phase {
     GSN_PHASE_PASS,          /* the one pass over the rows: F, stress, f_int */
     GSN_PHASE_CONSTRAINTS,   /* the boundary solves (constraint.h) */
-    GSN_PHASE_BOUNDARY_TERM, /* the boundary term on constrained surfaces */
     GSN_PHASE_UPDATES,       /* d, a, v, reactions, energies */
     GSN_PHASE_COUNT
 };
@@ -95,8 +95,8 @@ struct gsn_explicit {
                                full value, N */
     double load_factor;     /* of the dead loads (time.ramp), 1 at full */
     double *f_int;          /* n x 3 internal force, N */
-    double *reaction;       /* n x 3: M a - f_ext + f_int where constrained */
-    double *boundary_force; /* n x 3: the boundary term, taken off f_int */
+    double *reaction;       /* n x 3: C^T lambda, the force the supports
+                               apply (constraint.h), 0 where they reach not */
     double *stress;         /* points x 6, Pa (nominal Cauchy) */
     double *state;          /* main points x state_size */
 
@@ -125,21 +125,11 @@ struct gsn_explicit {
                                         forces, G = sym dH (case.h) */
     int held_axis;                   /* plane_strain: the component that is
                                         zero at every coefficient, -1 none */
-    int skip_boundary_term;          /* 1: leave out the boundary term (negative
-                                        control of the patch test only) */
     int plastic_offset;              /* equivalent_plastic_strain in the
                                         state, -1 without plasticity */
-    int *boundary_point_mask;        /* constrained components at each boundary
-                                        quadrature point (bit k: component k) */
-    double *boundary_traction; /* boundary points x 3: t of the step, Pa */
-    /* The entries of boundary_values at constrained boundary points, by
-     * particle (offset particles + 1), each with its value Psi_I(x_q) and
-     * boundary point q, in boundary point order. */
-    int *boundary_entry_offset, *boundary_entry_point;
-    double *boundary_entry_value;
     /* The main points of each particle's nodal domain (offset particles
-     * + 1), what the particle reports of the points' stress and state and
-     * what the boundary term reads: nodal integration, the particle's own
+     * + 1), what the particle reports of the points' stress and state (and
+     * the tractions of gsn_explicit_surface_force): nodal integration, the particle's own
      * nodal point; Gauss, the points nearest to the particle (among those
      * its kernel covers, so the points of its nodal domain) or, where there
      * are none, the one point nearest to it. domain_weight: the sum of
@@ -260,7 +250,7 @@ void gsn_explicit_add_traction(struct gsn_explicit *e,
 int gsn_explicit_refresh(struct gsn_explicit *e);
 
 /* The pass alone: F, the objective stress update, P at every point and
- * f_int (without the boundary term) for the increment from
+ * f_int for the increment from
  * previous_displacement to displacement (both set by the caller).
  * gsn_explicit_step calls it; tests drive it with prescribed motions. */
 int gsn_explicit_update_stress(struct gsn_explicit *e);

@@ -23,6 +23,7 @@ void gsn_kernel_options_from_case(const struct gsn_case *c,
     options->stabilization_coefficient = c->stabilization_coefficient;
     options->stabilization_subcells = GSN_DEFAULT_STABILIZATION_SUBCELLS;
     options->cover_neighbours = 0;
+    options->held_facet = options->held_particle = NULL;
 }
 
 void gsn_quadrature_destroy(struct gsn_quadrature **q)
@@ -65,6 +66,16 @@ size_t gsn_quadrature_bytes(const struct gsn_quadrature *q)
 
 /* ---- SCNI: eq. (20) per particle from its facets ------------------------ */
 
+/* The interpolant on held facets (gsn_kernel_options.held_facet): boundary
+ * point b's Psi_I is sum_k weight_k Psi_I(X_particle_k) over its stencil
+ * [offset[b], offset[b + 1]), empty where Psi_I itself is used. */
+struct held_stencils {
+    int *offset; /* boundary points + 1 */
+    int *particle;
+    double *weight;
+    int *facet_point; /* per facet: its first boundary point, or -1 */
+};
+
 struct facet_context {
     const struct gsn_model *m;
     const struct gsn_rk *rk;
@@ -72,6 +83,8 @@ struct facet_context {
     const int *particle_facet;
     const struct gsn_shape_rows *nodal; /* B_L rows (MSCNI) */
     int subcells;                       /* MSCNI: 2 or 6 */
+    const struct held_stencils *held;   /* NULL: none */
+    const struct gsn_shape_rows *values; /* Psi_I(X_J), rows J */
 };
 
 static int compare_int(const void *a, const void *b)
@@ -122,8 +135,27 @@ static int scni_row(void *context, int L, struct kernel_thread *t)
         int f = c->particle_facet[e];
         double sign = m->facet_owner[f] == L ? 1.0 : -1.0;
         const double *normal = m->facet_normal + 3 * (size_t)f;
+        int b0 = c->held ? c->held->facet_point[f] : -1;
         for (int q = m->facet_point_offset[f]; q < m->facet_point_offset[f + 1];
              ++q) {
+            int b = b0 < 0 ? -1 : b0 + q - m->facet_point_offset[f];
+            if (b >= 0 && c->held->offset[b + 1] > c->held->offset[b]) {
+                /* a held facet: the interpolant of Psi_I (held_stencils) */
+                double w = sign * m->facet_weight[q];
+                for (int k = c->held->offset[b]; k < c->held->offset[b + 1];
+                     ++k) {
+                    int J = c->held->particle[k];
+                    double a = c->held->weight[k] * w;
+                    for (int r = c->values->offset[J];
+                         r < c->values->offset[J + 1]; ++r) {
+                        double v[3] = {c->values->value[r] * normal[0] * a,
+                                       c->values->value[r] * normal[1] * a,
+                                       c->values->value[r] * normal[2] * a};
+                        accumulate(t, &touched, c->values->index[r], v);
+                    }
+                }
+                continue;
+            }
             int count;
             int rc = kernel_evaluate(c->rk, m->facet_point + 3 * (size_t)q, 0,
                                      t, &count, "facet point", q);
@@ -460,6 +492,276 @@ static int boundary_points(const struct gsn_model *m, struct gsn_quadrature *q)
     return GSN_OK;
 }
 
+/* ---- Held facets: Psi_I through the held particles ----------------------
+ * On a boundary facet where an essential boundary holds components K
+ * (gsn_kernel_options.held_facet), Psi_I(x_q) is replaced by
+ * sum_k phi_k(x_q) Psi_I(X_k) over the nearest HELD_STENCIL particles of
+ * the facet's surface that hold K (taken from the row of the facet's
+ * owner), phi the linear moving-least-squares interpolant: it reproduces
+ * linear fields, so the smoothed gradients keep eq. (18) and the
+ * divergence consistency with the tractions, and the facet's boundary
+ * integral sum_q Psi_I(x_q) t w_q becomes sum_k Psi_I(X_k) lambda_k, a
+ * combination of the constraints' rows, which the mass-orthogonal
+ * projection (constraint.h) absorbs: the linear patch test holds without
+ * a non-symmetric boundary term (docs/solver.md, "Boundary values"). */
+enum { HELD_STENCIL = 8 };
+
+static double squared_distance(const double *a, const double *b)
+{
+    double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
+    return d0 * d0 + d1 * d1 + d2 * d2;
+}
+/* Pivots of the moment matrix below this share of its largest diagonal
+ * are a direction the stencil does not span (the normal of a flat
+ * surface). */
+#define HELD_PIVOT 1e-10
+/* The interpolant must reproduce 1 and x to this (relative to the
+ * stencil's radius); else the point keeps Psi_I itself. */
+#define HELD_REPRODUCTION 1e-9
+
+static void held_stencils_free(struct held_stencils *h)
+{
+    free(h->offset);
+    free(h->particle);
+    free(h->weight);
+    free(h->facet_point);
+    memset(h, 0, sizeof *h);
+}
+
+/* The weights phi of the linear moving-least-squares interpolant at x
+ * through the count points X (weights (1 - (r/R)^2)^2, R = 1.5 x the
+ * farthest): sum phi_k (1, X_k) = (1, x) whenever x lies in their affine
+ * hull; a direction the points do not span is left out by the pivoted
+ * Cholesky factorization of the moment matrix. 1 if the reproduction
+ * holds, else 0. */
+static int held_weights(const double *X, int count, const double x[3],
+                        double *phi)
+{
+    double radius = 0.0, w[HELD_STENCIL], p[HELD_STENCIL][4];
+    for (int k = 0; k < count; ++k)
+        radius = fmax(radius, sqrt(squared_distance(&X[3 * k], x)));
+    if (count == 0 || radius == 0.0)
+        return 0;
+    radius *= 1.5;
+    double M[4][4] = {{0}};
+    for (int k = 0; k < count; ++k) {
+        double r2 = squared_distance(&X[3 * k], x) / (radius * radius);
+        w[k] = (1.0 - r2) * (1.0 - r2);
+        p[k][0] = 1.0;
+        for (int a = 0; a < 3; ++a)
+            p[k][a + 1] = (X[3 * k + a] - x[a]) / radius;
+        for (int a = 0; a < 4; ++a)
+            for (int b = 0; b < 4; ++b)
+                M[a][b] += w[k] * p[k][a] * p[k][b];
+    }
+    /* pivoted Cholesky P^T M P = L L^T, stopped at rank r */
+    int perm[4] = {0, 1, 2, 3}, rank = 0;
+    double largest = fmax(fmax(M[0][0], M[1][1]), fmax(M[2][2], M[3][3]));
+    double L[4][4] = {{0}};
+    for (int k = 0; k < 4; ++k) {
+        int j = k;
+        for (int i = k + 1; i < 4; ++i)
+            if (M[i][i] > M[j][j])
+                j = i;
+        if (!(M[j][j] > HELD_PIVOT * largest))
+            break;
+        for (int i = 0; i < 4; ++i) { /* swap rows, then columns, k and j */
+            double t = M[k][i];
+            M[k][i] = M[j][i];
+            M[j][i] = t;
+        }
+        for (int i = 0; i < 4; ++i) {
+            double t = M[i][k];
+            M[i][k] = M[i][j];
+            M[i][j] = t;
+            t = L[k][i];
+            if (i < k) {
+                L[k][i] = L[j][i];
+                L[j][i] = t;
+            }
+        }
+        int t = perm[k];
+        perm[k] = perm[j];
+        perm[j] = t;
+        L[k][k] = sqrt(M[k][k]);
+        for (int i = k + 1; i < 4; ++i)
+            L[i][k] = M[i][k] / L[k][k];
+        for (int i = k + 1; i < 4; ++i)
+            for (int jj = k + 1; jj < 4; ++jj)
+                M[i][jj] -= L[i][k] * L[jj][k];
+        rank = k + 1;
+    }
+    /* M a = e_0 on the leading rank unknowns, the rest 0 */
+    double y[4] = {0}, a[4] = {0};
+    for (int i = 0; i < rank; ++i) {
+        double v = perm[i] == 0 ? 1.0 : 0.0;
+        for (int j = 0; j < i; ++j)
+            v -= L[i][j] * y[j];
+        y[i] = v / L[i][i];
+    }
+    for (int i = rank - 1; i >= 0; --i) {
+        double v = y[i];
+        for (int j = i + 1; j < rank; ++j)
+            v -= L[j][i] * y[j];
+        y[i] = v / L[i][i];
+    }
+    for (int i = 0; i < rank; ++i)
+        a[perm[i]] = y[i];
+    double moment[4] = {0};
+    for (int k = 0; k < count; ++k) {
+        phi[k] = w[k] * (p[k][0] * a[0] + p[k][1] * a[1] + p[k][2] * a[2] +
+                         p[k][3] * a[3]);
+        for (int b = 0; b < 4; ++b)
+            moment[b] += phi[k] * p[k][b];
+    }
+    return fabs(moment[0] - 1.0) <= HELD_REPRODUCTION &&
+           fabs(moment[1]) <= HELD_REPRODUCTION &&
+           fabs(moment[2]) <= HELD_REPRODUCTION &&
+           fabs(moment[3]) <= HELD_REPRODUCTION;
+}
+
+/* The stencil of boundary point b (held_stencils): up to HELD_STENCIL
+ * particles nearest to it, on its facet's surface and holding what the
+ * facet holds, from the row of the facet's owner; count 0 if the facet
+ * holds nothing or the interpolant does not reproduce. */
+static int held_point(const struct gsn_model *m,
+                      const struct gsn_kernel_options *o,
+                      const struct gsn_shape_rows *values,
+                      const struct gsn_quadrature *q, int b, int *particle,
+                      double *weight)
+{
+    int f = q->boundary_point_facet[b], K = o->held_facet[f];
+    if (!K)
+        return 0;
+    const double *x = &q->boundary_point_position[3 * (size_t)b];
+    int owner = m->facet_owner[f], surface = m->facet_surface[f], count = 0;
+    double distance[HELD_STENCIL];
+    for (int e = values->offset[owner]; e < values->offset[owner + 1]; ++e) {
+        int J = values->index[e];
+        if ((o->held_particle[J] & K) != K ||
+            !gsn_model_particle_on_surface(m, J, surface))
+            continue;
+        double d = squared_distance(&m->position[3 * (size_t)J], x);
+        if (count == HELD_STENCIL && d >= distance[count - 1])
+            continue;
+        int k = count < HELD_STENCIL ? count++ : count - 1;
+        while (k > 0 && (distance[k - 1] > d ||
+                         (distance[k - 1] == d && particle[k - 1] > J))) {
+            distance[k] = distance[k - 1];
+            particle[k] = particle[k - 1];
+            --k;
+        }
+        distance[k] = d;
+        particle[k] = J;
+    }
+    double X[3 * HELD_STENCIL];
+    for (int k = 0; k < count; ++k)
+        memcpy(&X[3 * k], &m->position[3 * (size_t)particle[k]],
+               3 * sizeof(double));
+    return held_weights(X, count, x, weight) ? count : 0;
+}
+
+/* The stencils of every boundary point, and boundary_values made the
+ * interpolant's on held facets. */
+static int held_build(const struct gsn_model *m,
+                      const struct gsn_kernel_options *o,
+                      struct gsn_quadrature *q, struct held_stencils *h)
+{
+    const struct gsn_shape_rows *values = &q->particle_values;
+    int nb = q->boundary_point_count, n = m->particle_count;
+    size_t wide = (size_t)HELD_STENCIL * (size_t)(nb + 1);
+    h->offset = calloc((size_t)nb + 1, sizeof(int));
+    h->particle = malloc(wide * sizeof(int));
+    h->weight = malloc(wide * sizeof(double));
+    h->facet_point = malloc(((size_t)m->facet_count + 1) * sizeof(int));
+    double *dense = calloc((size_t)n + 1, sizeof(double));
+    int *touched = malloc(((size_t)n + 1) * sizeof(int));
+    int *mark = calloc((size_t)n + 1, sizeof(int));
+    struct gsn_shape_rows rows = {0};
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(h->offset && h->particle && h->weight && h->facet_point &&
+                       dense && touched && mark,
+                   rc, GSN_ERR_MEMORY, done, "cannot allocate held stencils");
+    for (int f = 0; f < m->facet_count; ++f)
+        h->facet_point[f] = -1;
+    for (int b = nb - 1; b >= 0; --b)
+        h->facet_point[q->boundary_point_facet[b]] = b;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (int b = 0; b < nb; ++b)
+        h->offset[b + 1] =
+            held_point(m, o, values, q, b, &h->particle[HELD_STENCIL * b],
+                       &h->weight[HELD_STENCIL * b]);
+    /* compact the stencils (offset[b + 1] held the count) */
+    for (int b = 0; b < nb; ++b) {
+        int count = h->offset[b + 1];
+        h->offset[b + 1] = h->offset[b] + count;
+        memmove(&h->particle[h->offset[b]], &h->particle[HELD_STENCIL * b],
+                (size_t)count * sizeof(int));
+        memmove(&h->weight[h->offset[b]], &h->weight[HELD_STENCIL * b],
+                (size_t)count * sizeof(double));
+    }
+    /* boundary_values: the interpolant where there is a stencil */
+    const struct gsn_shape_rows *old = &q->boundary_values;
+    size_t capacity = (size_t)old->offset[nb] + 1;
+    rows.row_count = nb;
+    rows.offset = calloc((size_t)nb + 1, sizeof(int));
+    rows.index = malloc(capacity * sizeof(int));
+    rows.value = malloc(capacity * sizeof(double));
+    GSN_CHECK_GOTO(rows.offset && rows.index && rows.value, rc, GSN_ERR_MEMORY,
+                   done, "cannot allocate boundary values");
+    for (int b = 0; b < nb; ++b) {
+        int listed = 0;
+        if (h->offset[b + 1] > h->offset[b]) {
+            for (int k = h->offset[b]; k < h->offset[b + 1]; ++k) {
+                int J = h->particle[k];
+                for (int e = values->offset[J]; e < values->offset[J + 1];
+                     ++e) {
+                    int I = values->index[e];
+                    if (!mark[I]) {
+                        mark[I] = 1;
+                        touched[listed++] = I;
+                    }
+                    dense[I] += h->weight[k] * values->value[e];
+                }
+            }
+            qsort(touched, (size_t)listed, sizeof(int), compare_int);
+        } else {
+            for (int e = old->offset[b]; e < old->offset[b + 1]; ++e) {
+                touched[listed++] = old->index[e];
+                dense[old->index[e]] = old->value[e];
+            }
+        }
+        size_t need = (size_t)rows.offset[b] + (size_t)listed;
+        if (need > capacity) {
+            capacity = 2 * need;
+            int *index = realloc(rows.index, capacity * sizeof(int));
+            if (index)
+                rows.index = index;
+            double *value = realloc(rows.value, capacity * sizeof(double));
+            if (value)
+                rows.value = value;
+            GSN_CHECK_GOTO(index && value, rc, GSN_ERR_MEMORY, done,
+                           "cannot grow boundary values");
+        }
+        for (int l = 0; l < listed; ++l) {
+            rows.index[rows.offset[b] + l] = touched[l];
+            rows.value[rows.offset[b] + l] = dense[touched[l]];
+            dense[touched[l]] = 0.0;
+            mark[touched[l]] = 0;
+        }
+        rows.offset[b + 1] = rows.offset[b] + listed;
+    }
+    gsn_shape_rows_free(&q->boundary_values);
+    q->boundary_values = rows;
+    rows = (struct gsn_shape_rows){0};
+done:
+    gsn_shape_rows_free(&rows);
+    free(dense);
+    free(touched);
+    free(mark);
+    return rc;
+}
+
 static int nodal_points(const struct gsn_model *m, struct gsn_quadrature *q)
 {
     size_t n = (size_t)m->particle_count;
@@ -555,10 +857,25 @@ static int quadrature_build(const struct gsn_model *m,
     GSN_CALL(gsn_rk_shape_rows(q->rk, q->boundary_point_count,
                                q->boundary_point_position, 0,
                                &q->boundary_values));
+    struct held_stencils held = {0};
+    if (o->held_facet) {
+        rc = held_build(m, o, q, &held);
+        if (rc != GSN_OK) {
+            held_stencils_free(&held);
+            return rc;
+        }
+    }
 
-    struct facet_context c = {m,    q->rk, NULL,
-                              NULL, NULL,  o->stabilization_subcells};
+    struct facet_context c = {m,
+                              q->rk,
+                              NULL,
+                              NULL,
+                              NULL,
+                              o->stabilization_subcells,
+                              o->held_facet ? &held : NULL,
+                              &q->particle_values};
     if (o->integration == GSN_INTEGRATION_GAUSS) {
+        held_stencils_free(&held); /* boundary_values have it */
         int count = 0;
         GSN_CALL(gauss_points(m, o->gauss_points, background, background_count,
                               &q->point_position, &q->point_weight, &count));
@@ -600,6 +917,7 @@ static int quadrature_build(const struct gsn_model *m,
         rc = stabilize(m, &c, o->stabilization_coefficient, q);
     free(offset);
     free(facet);
+    held_stencils_free(&held);
     GSN_CALL(rc);
     return GSN_OK;
 }

@@ -38,22 +38,21 @@ static int build(const struct gsn_model *m, const struct gsn_case *c,
                  struct gsn_explicit **loop,
                  struct gsn_reference_report *report)
 {
-    struct gsn_kernel_options kernel;
-    gsn_kernel_options_from_case(c, &kernel);
-    /* a deformed reference (an update, or its restart): every particle
-     * covered by its neighbours' kernels */
-    kernel.cover_neighbours = epoch > 0.0;
-    double t0 = omp_get_wtime();
-    GSN_CALL(gsn_quadrature_create(m, &kernel, NULL, 0, quadrature));
-    double t1 = omp_get_wtime();
     unsigned *released = NULL;
     if (contact) {
         released = calloc((size_t)m->particle_count + 1, sizeof *released);
         GSN_CHECK(released, GSN_ERR_MEMORY, "out of memory");
         gsn_contact_release(contact, m, epoch, released);
     }
-    int rc = gsn_constraints_create(m, c, &(*quadrature)->particle_values,
-                                    released, constraints);
+    struct gsn_kernel_options kernel;
+    gsn_kernel_options_from_case(c, &kernel);
+    /* a deformed reference (an update, or its restart): every particle
+     * covered by its neighbours' kernels */
+    kernel.cover_neighbours = epoch > 0.0;
+    double t0 = omp_get_wtime();
+    int rc = gsn_constraints_discretize(m, c, &kernel, NULL, 0, released,
+                                        quadrature, constraints);
+    double t1 = omp_get_wtime();
     free(released);
     GSN_CALL(rc);
     gsn_constraints_set_epoch(*constraints, epoch);

@@ -232,8 +232,8 @@ static void apply_loads(struct run *r, double t)
 
 /* One history row from the frame just filled: the mean u(X_J) over the
  * surface's particles and the force the supports apply through it, the
- * resultant of its tractions plus the constraint reactions of the
- * components the entry holds (gsn_constraints_entry: a particle on two
+ * multipliers lambda_J of the components the entry holds
+ * (gsn_constraints_multipliers; gsn_constraints_entry: a particle on two
  * surfaces counts once) (DESIGN.md; docs/solver.md, "Boundary values"); on
  * a traction entry, the resultant of the traction it applies; on a rigid
  * body, its prescribed displacement, and the contact force added. */
@@ -241,6 +241,17 @@ static int write_history_row(struct run *r)
 {
     const struct gsn_explicit *e = r->reference->loop;
     const double *u = r->frame.field[GSN_FRAME_DISPLACEMENT];
+    double *multiplier = NULL;
+    if (r->reference->constraints) {
+        multiplier = malloc(sizeof(double) * 3 * (size_t)e->particle_count);
+        GSN_CHECK(multiplier, GSN_ERR_MEMORY, "out of memory");
+        int rc = gsn_constraints_multipliers(r->reference->constraints,
+                                             e->reaction, multiplier);
+        if (rc != GSN_OK) {
+            free(multiplier);
+            return rc;
+        }
+    }
     fprintf(r->history, "%.9g,%ld", e->time, e->step);
     for (int b = 0; b < r->c->boundary_count; ++b) {
         const struct boundary_set *set = &r->boundary[b];
@@ -257,15 +268,11 @@ static int write_history_row(struct run *r)
                 mean[k] += u[3 * set->particle[s] + k];
             ++counted;
         }
-        gsn_explicit_surface_force(e, set->surface,
-                                   gsn_constraints_surface_mask(
-                                       r->reference->constraints, set->surface),
-                                   force);
-        for (int s = 0; s < set->count; ++s)
+        for (int s = 0; s < set->count && multiplier; ++s)
             for (int k = 0; k < 3; ++k)
                 if (gsn_constraints_entry(r->reference->constraints,
                                           set->particle[s], k) == b)
-                    force[k] += e->reaction[3 * set->particle[s] + k];
+                    force[k] += multiplier[3 * set->particle[s] + k];
         /* a rigid body: the force it puts on the soil by contact too */
         if (e->contact && r->c->boundaries[b].rigid)
             for (int k = 0; k < 3; ++k)
@@ -294,6 +301,7 @@ static int write_history_row(struct run *r)
             e->kinetic_energy, e->internal_energy, e->external_work, max_damage,
             e->damping_work, r->reference->update_count,
             r->reference->energy_jump, e->dead_count);
+    free(multiplier);
     GSN_CALL(history_flush(r));
     return GSN_OK;
 }
@@ -771,11 +779,10 @@ static void print_phases(const struct gsn_explicit *e)
         total += t[k];
     if (!(total > 0.0))
         return;
-    printf("step time: row pass %.0f%%, boundary solves %.0f%%, boundary "
-           "term %.0f%%, updates %.0f%% of %.3g s\n",
+    printf("step time: row pass %.0f%%, boundary solves %.0f%%, updates "
+           "%.0f%% of %.3g s\n",
            100.0 * t[GSN_PHASE_PASS] / total,
            100.0 * t[GSN_PHASE_CONSTRAINTS] / total,
-           100.0 * t[GSN_PHASE_BOUNDARY_TERM] / total,
            100.0 * t[GSN_PHASE_UPDATES] / total, total);
 }
 

@@ -138,6 +138,15 @@ struct gsn_kernel_options {
     int stabilization_subcells;       /* MSCNI: 6 (+-x, +-y, +-z) or 2 */
     int cover_neighbours;             /* supports reach every facet neighbour (a
                                          reference-configuration update's build) */
+    /* Essential boundaries (gsn_constraints_held; NULL: none): the
+     * components held on each facet and at each particle. On a held
+     * boundary facet, Psi_I at the quadrature points is replaced by its
+     * linear interpolant through the held particles of the facet's surface
+     * (in the smoothed gradients and boundary_values), so that the facet's
+     * boundary integral is a combination of the constraints' rows
+     * (docs/solver.md, "Boundary values"). */
+    const int *held_facet;
+    const int *held_particle;
 };
 
 void gsn_kernel_options_from_case(const struct gsn_case *c,
