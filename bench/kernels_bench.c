@@ -117,8 +117,8 @@ int main(int argc, char **argv)
         GSN_STABILIZATION_MSCNI, GSN_STABILIZATION_NONE};
     const int subcells[4] = {6, 6, 2, 6};
     for (int s = 0; s < 4; ++s) {
-        struct gsn_kernel_options o = {1.5,     1,   method[s],   2,
-                                       stab[s], 1.0, subcells[s], 0, NULL, NULL};
+        struct gsn_kernel_options o = {
+            1.5, 1, method[s], 2, stab[s], 1.0, subcells[s], 0, NULL, NULL};
         struct gsn_quadrature *q = NULL;
         double t0 = omp_get_wtime(), c0 = cpu_seconds();
         if (gsn_quadrature_create(&m, &o, NULL, 0, &q)) {

@@ -76,6 +76,8 @@ struct gsn_constraints {
 
 static const char component_names[3] = {'x', 'y', 'z'};
 
+static void component_factors_free(struct component_constraint *cc);
+
 void gsn_constraints_destroy(struct gsn_constraints **constraints)
 {
     if (!constraints || !*constraints)
@@ -86,16 +88,11 @@ void gsn_constraints_destroy(struct gsn_constraints **constraints)
         free(cc->particle);
         free(cc->velocity);
         free(cc->rhs);
-        int *ints[] = {cc->row_offset,     cc->row_index,    cc->touched,
-                       cc->touched_offset, cc->touched_row,  cc->s_offset,
-                       cc->s_column,       cc->pivot_row,    cc->column_order,
-                       cc->lower_offset,   cc->lower_row,    cc->upper_offset,
-                       cc->upper_row};
-        double *doubles[] = {cc->row_value,   cc->touched_inverse_mass,
-                             cc->touched_value, cc->s_entry,
-                             cc->row_scale,   cc->lower_value,
-                             cc->upper_value, cc->upper_diagonal,
-                             cc->pivot_work};
+        component_factors_free(cc);
+        int *ints[] = {cc->row_offset, cc->row_index, cc->touched,
+                       cc->touched_offset, cc->touched_row};
+        double *doubles[] = {cc->row_value, cc->touched_inverse_mass,
+                             cc->touched_value};
         for (size_t i = 0; i < sizeof ints / sizeof ints[0]; ++i)
             free(ints[i]);
         for (size_t i = 0; i < sizeof doubles / sizeof doubles[0]; ++i)
@@ -420,12 +417,32 @@ done:
     return rc;
 }
 
+/* Frees S_c and its factors (a new mass forms them again). */
+static void component_factors_free(struct component_constraint *cc)
+{
+    int **ints[] = {&cc->s_offset,     &cc->s_column,     &cc->pivot_row,
+                    &cc->column_order, &cc->lower_offset, &cc->lower_row,
+                    &cc->upper_offset, &cc->upper_row};
+    double **doubles[] = {&cc->s_entry,        &cc->row_scale,
+                          &cc->lower_value,    &cc->upper_value,
+                          &cc->upper_diagonal, &cc->pivot_work};
+    for (size_t i = 0; i < sizeof ints / sizeof ints[0]; ++i) {
+        free(*ints[i]);
+        *ints[i] = NULL;
+    }
+    for (size_t i = 0; i < sizeof doubles / sizeof doubles[0]; ++i) {
+        free(*doubles[i]);
+        *doubles[i] = NULL;
+    }
+}
+
 /* S_c = C_c M^-1 C_c^T: row s sums, over the particles I of row s of C,
  * Psi_I(X_J) Psi_I(X_K) / m_I into the columns K that touch I. */
 static int component_factorize(struct component_constraint *cc,
                                const double *mass, char name)
 {
     int n = cc->count;
+    component_factors_free(cc);
     for (int t = 0; t < cc->touched_count; ++t)
         cc->touched_inverse_mass[t] = 1.0 / mass[cc->touched[t]];
     double *dense = calloc((size_t)n, sizeof(double));
@@ -514,8 +531,7 @@ int gsn_constraints_set_mass(struct gsn_constraints *constraints,
  * and that entry's index (both arrays surface_count + 1, zeroed). */
 static int prescribe(const struct gsn_model *m, const struct gsn_case *given,
                      const unsigned *released, int *entry_of,
-                     double *velocity_of, int *surface_mask,
-                     int *surface_entry)
+                     double *velocity_of, int *surface_mask, int *surface_entry)
 {
     /* symmetry planes hold their normal component: a copy with it fixed */
     struct gsn_case *c = malloc(sizeof *c);
@@ -536,8 +552,7 @@ static int prescribe(const struct gsn_model *m, const struct gsn_case *given,
     return rc;
 }
 
-int gsn_constraints_create(const struct gsn_model *m,
-                           const struct gsn_case *c,
+int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
                            const struct gsn_shape_rows *values,
                            const unsigned *released,
                            struct gsn_constraints **out)
@@ -598,8 +613,8 @@ int gsn_constraints_held(const struct gsn_model *m, const struct gsn_case *c,
     GSN_CHECK_GOTO(*facet_mask && *particle_mask && entry_of && velocity_of &&
                        surface_mask && surface_entry,
                    rc, GSN_ERR_MEMORY, done, "out of memory");
-    GSN_CALL_GOTO(prescribe(m, c, released, entry_of, velocity_of,
-                            surface_mask, surface_entry),
+    GSN_CALL_GOTO(prescribe(m, c, released, entry_of, velocity_of, surface_mask,
+                            surface_entry),
                   rc, done);
     for (size_t p = 0; p < n; ++p)
         for (int k = 0; k < 3; ++k)
@@ -782,14 +797,11 @@ int gsn_constraints_surface_mask(const struct gsn_constraints *constraints,
     return constraints->surface_mask[surface];
 }
 
-int gsn_constraints_discretize(const struct gsn_model *m,
-                               const struct gsn_case *c,
-                               const struct gsn_kernel_options *options,
-                               const double *background_cells,
-                               int background_cell_count,
-                               const unsigned *released,
-                               struct gsn_quadrature **quadrature,
-                               struct gsn_constraints **constraints)
+int gsn_constraints_discretize(
+    const struct gsn_model *m, const struct gsn_case *c,
+    const struct gsn_kernel_options *options, const double *background_cells,
+    int background_cell_count, const unsigned *released,
+    struct gsn_quadrature **quadrature, struct gsn_constraints **constraints)
 {
     *quadrature = NULL;
     *constraints = NULL;

@@ -77,14 +77,11 @@ int gsn_constraints_facet_mask(const struct gsn_constraints *constraints,
 /* The quadrature of model m with the held facets of case c
  * (gsn_constraints_held, into a copy of options), then the constraints on
  * its shape values: the build every solver of a case goes through. */
-int gsn_constraints_discretize(const struct gsn_model *m,
-                               const struct gsn_case *c,
-                               const struct gsn_kernel_options *options,
-                               const double *background_cells,
-                               int background_cell_count,
-                               const unsigned *released,
-                               struct gsn_quadrature **quadrature,
-                               struct gsn_constraints **constraints);
+int gsn_constraints_discretize(
+    const struct gsn_model *m, const struct gsn_case *c,
+    const struct gsn_kernel_options *options, const double *background_cells,
+    int background_cell_count, const unsigned *released,
+    struct gsn_quadrature **quadrature, struct gsn_constraints **constraints);
 
 /* Frees; NULL-safe, nulls the handle. */
 void gsn_constraints_destroy(struct gsn_constraints **constraints);

@@ -153,11 +153,11 @@ void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
         boundary_traction(e, b, t);
         /* a released particle's facets hold nothing (constraint.h) */
         int facet = q->boundary_point_facet[b];
-        int held = e->constraints
-                       ? mask & gsn_constraints_facet_mask(
-                                    e->constraints, e->model->facet_surface[facet],
-                                    e->model->facet_owner[facet])
-                       : mask;
+        int held = e->constraints ? mask & gsn_constraints_facet_mask(
+                                               e->constraints,
+                                               e->model->facet_surface[facet],
+                                               e->model->facet_owner[facet])
+                                  : mask;
         for (int i = 0; i < 3; ++i)
             if (held & (1 << i))
                 force[i] += t[i] * q->boundary_point_weight[b];
@@ -199,6 +199,9 @@ static int build_mass(struct gsn_explicit *e)
             e->f_ext[3 * i + k] = e->load_factor * e->f_ext_full[3 * i + k];
         }
     }
+    /* the projection is mass-orthogonal: S = C M^-1 C^T with these */
+    if (e->constraints)
+        GSN_CALL(gsn_constraints_set_mass(e->constraints, e->mass));
     return GSN_OK;
 }
 
@@ -409,8 +412,6 @@ int gsn_explicit_create(const struct gsn_model *m,
             e->reference_gradient[9 * p + a] = a % 4 == 0 ? 1.0 : 0.0;
     }
     GSN_CALL_GOTO(build_mass(e), rc, fail);
-    if (constraints)
-        GSN_CALL_GOTO(gsn_constraints_set_mass(constraints, e->mass), rc, fail);
     GSN_CALL_GOTO(build_domains(e), rc, fail);
     GSN_CALL_GOTO(gsn_material_initialize(material, main, e->stress, e->state),
                   rc, fail);
@@ -1242,10 +1243,9 @@ int gsn_explicit_step(struct gsn_explicit *e)
     step_loop(e, n, new_velocities);
     phase_end(e, GSN_PHASE_UPDATES, &mark);
     if (e->constraints && refresh)
-        GSN_CALL(gsn_constraints_apply(e->constraints,
-                                       &e->quadrature->particle_values,
-                                       GSN_FIELD_VELOCITY, t1, e->velocity,
-                                       NULL));
+        GSN_CALL(gsn_constraints_apply(
+            e->constraints, &e->quadrature->particle_values, GSN_FIELD_VELOCITY,
+            t1, e->velocity, NULL));
     phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
 
     struct gsn_step_sums sums = step_loop(e, n, reactions_and_energies);
@@ -1531,8 +1531,7 @@ int gsn_explicit_settle(struct gsn_explicit *e)
     if (e->constraints)
         GSN_CALL(gsn_constraints_apply(
             e->constraints, &e->quadrature->particle_values,
-            GSN_FIELD_ACCELERATION, e->time, e->new_acceleration,
-            e->reaction));
+            GSN_FIELD_ACCELERATION, e->time, e->new_acceleration, e->reaction));
     memcpy(e->acceleration, e->new_acceleration,
            sizeof(double) * 3 * (size_t)n);
     /* reactions and the kinetic energy; the external force of this state

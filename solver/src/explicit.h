@@ -28,8 +28,9 @@
  * Integration points: the main points are the nodal points (point L is
  * particle L) or Gauss points, each with its own stress, H and material
  * state; MSCNI adds stabilization points to nodal points. What a particle
- * reports (stress, damage, plastic strain) is the weighted mean over its nodal domain's points (domain_point
- * below): its own nodal point, bit for bit, with nodal integration.
+ * reports (stress, damage, plastic strain) is the weighted mean over its nodal
+ * domain's points (domain_point below): its own nodal point, bit for bit, with
+ * nodal integration.
  *
  * Constrained boundaries: RK test functions do not vanish on a surface whose
  * displacement is prescribed, so the weak form has a boundary term
@@ -64,9 +65,9 @@ extern "C" {
 
 /* Phases of a step, for the wall time spent in each (phase_seconds). */
 enum gsn_explicit_phase {
-    GSN_PHASE_PASS,          /* the one pass over the rows: F, stress, f_int */
-    GSN_PHASE_CONSTRAINTS,   /* the boundary solves (constraint.h) */
-    GSN_PHASE_UPDATES,       /* d, a, v, reactions, energies */
+    GSN_PHASE_PASS,        /* the one pass over the rows: F, stress, f_int */
+    GSN_PHASE_CONSTRAINTS, /* the boundary solves (constraint.h) */
+    GSN_PHASE_UPDATES,     /* d, a, v, reactions, energies */
     GSN_PHASE_COUNT
 };
 
@@ -85,20 +86,20 @@ struct gsn_explicit {
     double time_base;
     long step_base;
 
-    double *mass;           /* n, kg */
-    double *displacement;   /* n x 3 coefficients d_I, m */
-    double *velocity;       /* n x 3, m/s */
-    double *acceleration;   /* n x 3, m/s^2 */
-    double *f_ext;          /* n x 3 external force of the step, N: the
-                               dead loads times load_factor */
-    double *f_ext_full;     /* n x 3 dead loads (body force, tractions) at
-                               full value, N */
-    double load_factor;     /* of the dead loads (time.ramp), 1 at full */
-    double *f_int;          /* n x 3 internal force, N */
-    double *reaction;       /* n x 3: C^T lambda, the force the supports
-                               apply (constraint.h), 0 where they reach not */
-    double *stress;         /* points x 6, Pa (nominal Cauchy) */
-    double *state;          /* main points x state_size */
+    double *mass;         /* n, kg */
+    double *displacement; /* n x 3 coefficients d_I, m */
+    double *velocity;     /* n x 3, m/s */
+    double *acceleration; /* n x 3, m/s^2 */
+    double *f_ext;        /* n x 3 external force of the step, N: the
+                             dead loads times load_factor */
+    double *f_ext_full;   /* n x 3 dead loads (body force, tractions) at
+                             full value, N */
+    double load_factor;   /* of the dead loads (time.ramp), 1 at full */
+    double *f_int;        /* n x 3 internal force, N */
+    double *reaction;     /* n x 3: C^T lambda, the force the supports
+                             apply (constraint.h), 0 where they reach not */
+    double *stress;       /* points x 6, Pa (nominal Cauchy) */
+    double *state;        /* main points x state_size */
 
     double kinetic_energy, internal_energy, external_work; /* J */
     double phase_seconds[GSN_PHASE_COUNT]; /* wall time of the steps, s */
@@ -129,11 +130,11 @@ struct gsn_explicit {
                                         state, -1 without plasticity */
     /* The main points of each particle's nodal domain (offset particles
      * + 1), what the particle reports of the points' stress and state (and
-     * the tractions of gsn_explicit_surface_force): nodal integration, the particle's own
-     * nodal point; Gauss, the points nearest to the particle (among those
-     * its kernel covers, so the points of its nodal domain) or, where there
-     * are none, the one point nearest to it. domain_weight: the sum of
-     * their weights, m^3. */
+     * the tractions of gsn_explicit_surface_force): nodal integration, the
+     * particle's own nodal point; Gauss, the points nearest to the particle
+     * (among those its kernel covers, so the points of its nodal domain) or,
+     * where there are none, the one point nearest to it. domain_weight: the sum
+     * of their weights, m^3. */
     int *domain_offset, *domain_point;
     double *domain_weight;
     int *point_owner; /* main points: the particle whose domain holds it */

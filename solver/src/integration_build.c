@@ -81,9 +81,9 @@ struct facet_context {
     const struct gsn_rk *rk;
     const int *particle_facet_offset; /* facets of each particle, ascending */
     const int *particle_facet;
-    const struct gsn_shape_rows *nodal; /* B_L rows (MSCNI) */
-    int subcells;                       /* MSCNI: 2 or 6 */
-    const struct held_stencils *held;   /* NULL: none */
+    const struct gsn_shape_rows *nodal;  /* B_L rows (MSCNI) */
+    int subcells;                        /* MSCNI: 2 or 6 */
+    const struct held_stencils *held;    /* NULL: none */
     const struct gsn_shape_rows *values; /* Psi_I(X_J), rows J */
 };
 

@@ -12,7 +12,8 @@ static struct gsn_quadrature *build(const struct gsn_model *m,
                                     enum gsn_stabilization stab,
                                     const double *bg, int nbg)
 {
-    struct gsn_kernel_options o = {1.5, 1, method, 2, stab, 1.0, 6, 0, NULL, NULL};
+    struct gsn_kernel_options o = {1.5, 1, method, 2,    stab,
+                                   1.0, 6, 0,      NULL, NULL};
     struct gsn_quadrature *q = NULL;
     int rc = gsn_quadrature_create(m, &o, bg, nbg, &q);
     if (rc)
@@ -59,7 +60,8 @@ static void check_lattice(int nx, int ny, int nz, int gauss)
 
     /* quadratic basis: SCNI stays linearly exact */
     struct gsn_kernel_options o2 = {
-        2.5, 2, GSN_INTEGRATION_SCNI, 2, GSN_STABILIZATION_NONE, 1.0, 6, 0, NULL, NULL};
+        2.5,  2,   GSN_INTEGRATION_SCNI, 2, GSN_STABILIZATION_NONE, 1.0, 6, 0,
+        NULL, NULL};
     struct gsn_quadrature *quadratic = NULL;
     TEST_INT(gsn_quadrature_create(&m, &o2, NULL, 0, &quadratic), GSN_OK);
     double r_quadratic = quadratic ? fixture_patch_test(&m, quadratic) : 1.0;
@@ -142,10 +144,14 @@ static void check_bad_options(void)
     struct gsn_model m;
     TEST_INT(fixture_lattice(size, 1.0, 1, &m), GSN_OK);
     struct gsn_kernel_options bad[4] = {
-        {1.5, 1, GSN_INTEGRATION_GAUSS, 2, GSN_STABILIZATION_MSCNI, 1.0, 6, 0, NULL, NULL},
-        {1.5, 1, GSN_INTEGRATION_GAUSS, 7, GSN_STABILIZATION_NONE, 1.0, 6, 0, NULL, NULL},
-        {1.5, 1, GSN_INTEGRATION_SCNI, 2, GSN_STABILIZATION_MSCNI, 1.0, 3, 0, NULL, NULL},
-        {-1.0, 1, GSN_INTEGRATION_SCNI, 2, GSN_STABILIZATION_NONE, 1.0, 6, 0, NULL, NULL}};
+        {1.5, 1, GSN_INTEGRATION_GAUSS, 2, GSN_STABILIZATION_MSCNI, 1.0, 6, 0,
+         NULL, NULL},
+        {1.5, 1, GSN_INTEGRATION_GAUSS, 7, GSN_STABILIZATION_NONE, 1.0, 6, 0,
+         NULL, NULL},
+        {1.5, 1, GSN_INTEGRATION_SCNI, 2, GSN_STABILIZATION_MSCNI, 1.0, 3, 0,
+         NULL, NULL},
+        {-1.0, 1, GSN_INTEGRATION_SCNI, 2, GSN_STABILIZATION_NONE, 1.0, 6, 0,
+         NULL, NULL}};
     for (int i = 0; i < 4; ++i) {
         struct gsn_quadrature *q = NULL;
         gsn_error_clear();

@@ -1,6 +1,6 @@
 #!/bin/sh
 # Issue 15, point 7: a case that ended in exit 3 now passes. A patch pushed
-# 0.6 m into the paper's soil (cases/punch.yaml, gmsh's reproducible mesh)
+# 0.65 m into the paper's soil (cases/punch.yaml, gmsh's reproducible mesh)
 # crushes particles beside its edges; the first used to stop the run with
 # exit 3 ("det F <= 0"). Now they fail (no stress, mass kept) and the run
 # ends with exit 0:
