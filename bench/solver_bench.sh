@@ -5,7 +5,7 @@
 # RUNS runs each; prints every run and the medians. The model is made once
 # by pre; each run solves STEPS steps at the paper's time step and writes
 # only its first and last frames; a run's line ends with where its step
-# time went (row pass, boundary solves, boundary term, updates; nothing
+# time went (row pass, boundary solves, updates; nothing
 # from a build older than that report). INTEGRATION replaces the case's
 # integration (e.g. scni for plain SCNI; slope_I.yaml has MSCNI); THREADS
 # lists the thread counts to run.

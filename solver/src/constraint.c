@@ -71,6 +71,7 @@ struct gsn_constraints {
                            prescription holds the component, or -1 */
     int *slot[3];       /* slot[c][I]: position of I in B_c, or -1 */
     int factorized;     /* gsn_constraints_set_mass has run */
+    int boundary_only;  /* gsn_constraints_set_boundary_only */
     struct component_constraint component[3];
 };
 
@@ -439,12 +440,17 @@ static void component_factors_free(struct component_constraint *cc)
 /* S_c = C_c M^-1 C_c^T: row s sums, over the particles I of row s of C,
  * Psi_I(X_J) Psi_I(X_K) / m_I into the columns K that touch I. */
 static int component_factorize(struct component_constraint *cc,
-                               const double *mass, char name)
+                               const double *mass, const int *slot,
+                               int boundary_only, char name)
 {
     int n = cc->count;
     component_factors_free(cc);
+    /* boundary_only: the other particles as if infinitely heavy, so the
+     * correction M^-1 C^T lambda reaches B_c alone: Lambda^-1 r */
     for (int t = 0; t < cc->touched_count; ++t)
-        cc->touched_inverse_mass[t] = 1.0 / mass[cc->touched[t]];
+        cc->touched_inverse_mass[t] = boundary_only && slot[cc->touched[t]] < 0
+                                          ? 0.0
+                                          : 1.0 / mass[cc->touched[t]];
     double *dense = calloc((size_t)n, sizeof(double));
     int *mark = malloc(sizeof(int) * (size_t)n);
     int *list = malloc(sizeof(int) * (size_t)n);
@@ -519,8 +525,9 @@ int gsn_constraints_set_mass(struct gsn_constraints *constraints,
 {
     for (int c = 0; c < 3; ++c)
         if (constraints->component[c].count > 0)
-            GSN_CALL(component_factorize(&constraints->component[c], mass,
-                                         component_names[c]));
+            GSN_CALL(component_factorize(
+                &constraints->component[c], mass, constraints->slot[c],
+                constraints->boundary_only, component_names[c]));
     constraints->factorized = 1;
     return GSN_OK;
 }
@@ -685,8 +692,8 @@ static void component_apply(struct gsn_constraints *constraints, int c,
             f += cc->touched_value[k] * cc->rhs[cc->touched_row[k]];
         size_t at = 3 * (size_t)cc->touched[t] + (size_t)c;
         field[at] += f * cc->touched_inverse_mass[t];
-        if (force)
-            force[at] = f;
+        if (force) /* M times the correction */
+            force[at] = cc->touched_inverse_mass[t] != 0.0 ? f : 0.0;
     }
 }
 
@@ -821,4 +828,9 @@ int gsn_constraints_discretize(
     if (rc != GSN_OK)
         gsn_quadrature_destroy(quadrature);
     return rc;
+}
+
+void gsn_constraints_set_boundary_only(struct gsn_constraints *constraints)
+{
+    constraints->boundary_only = 1;
 }

@@ -91,6 +91,12 @@ void gsn_constraints_destroy(struct gsn_constraints **constraints);
 int gsn_constraints_set_mass(struct gsn_constraints *constraints,
                              const double *mass);
 
+/* The correction of before 2026-12-02 evening, for a negative control
+ * only: the coefficients of B_c alone, Lambda_c^-1 (prescribed - C f), not
+ * mass-orthogonal (its force is M times the correction); takes effect at
+ * the next gsn_constraints_set_mass. */
+void gsn_constraints_set_boundary_only(struct gsn_constraints *constraints);
+
 /* Corrects field (n x 3 coefficients) in place, by the mass-orthogonal
  * projection, so that the prescribed values hold at time t at every
  * constrained particle. force (NULL: not wanted): where the correction

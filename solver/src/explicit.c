@@ -141,6 +141,29 @@ static void boundary_traction(const struct gsn_explicit *e, int b, double t[3])
                (P[3 * i] * N[0] + P[3 * i + 1] * N[1] + P[3 * i + 2] * N[2]);
 }
 
+/* The boundary term of before 2026-12-02 evening (explicit.h,
+ * legacy_boundary_term), taken off f_int. */
+static void legacy_boundary_term(struct gsn_explicit *e)
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    const struct gsn_shape_rows *values = &q->boundary_values;
+    for (int b = 0; b < q->boundary_point_count && e->constraints; ++b) {
+        int facet = q->boundary_point_facet[b];
+        int mask = gsn_constraints_facet_mask(e->constraints,
+                                              e->model->facet_surface[facet],
+                                              e->model->facet_owner[facet]);
+        if (!mask)
+            continue;
+        double t[3];
+        boundary_traction(e, b, t);
+        for (int k = values->offset[b]; k < values->offset[b + 1]; ++k)
+            for (int i = 0; i < 3; ++i)
+                if (mask & (1 << i))
+                    e->f_int[3 * (size_t)values->index[k] + (size_t)i] -=
+                        values->value[k] * t[i] * q->boundary_point_weight[b];
+    }
+}
+
 void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
                                 int mask, double force[3])
 {
@@ -1231,6 +1254,8 @@ int gsn_explicit_step(struct gsn_explicit *e)
     GSN_CALL(gsn_explicit_update_stress(e));
     phase_end(e, GSN_PHASE_PASS, &mark);
     GSN_CALL(contact_forces(e, t1));
+    if (e->legacy_boundary_term)
+        legacy_boundary_term(e);
     phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
 
     double dissipated = step_loop(e, n, new_accelerations).dissipated;

@@ -161,6 +161,12 @@ struct gsn_explicit {
                                    stopping the run */
     int *point_dead;            /* main points: 1 once failed */
     int dead_count;             /* main points failed so far */
+    int legacy_boundary_term;   /* 1: take the boundary term of before
+                                   2026-12-02 evening off f_int, sum_q
+                                   Psi_I(x_q) t w_q on the held facets
+                                   (non-symmetric; the negative control of
+                                   test_long_energy, with Psi_I itself on
+                                   the held facets) */
     int track_distortion;       /* 1: measure the distortion below (reference
                                    updates need it; the step skips it else) */
     /* Distortion of the step just done over the live main points, from
