@@ -694,6 +694,10 @@ static int held_build(const struct gsn_model *m,
     /* compact the stencils (offset[b + 1] held the count) */
     for (int b = 0; b < nb; ++b) {
         int count = h->offset[b + 1];
+        if (o->held_facet[q->boundary_point_facet[b]]) {
+            q->held_point_count += count > 0;
+            q->held_fallback_count += count == 0;
+        }
         h->offset[b + 1] = h->offset[b] + count;
         memmove(&h->particle[h->offset[b]], &h->particle[HELD_STENCIL * b],
                 (size_t)count * sizeof(int));

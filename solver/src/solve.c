@@ -1426,6 +1426,15 @@ static int run_setup(struct run *r)
                    : gsn_integration_name(c->integration),
                gsn_quadrature_bytes(r->reference->quadrature) / 1e6,
                now_seconds() - t0, r->total_steps);
+    if (r->reference->quadrature->held_fallback_count > 0)
+        fprintf(stderr,
+                "warning: %d of %d quadrature points on held surfaces keep "
+                "Psi_I: the held particles near them do not span them (a "
+                "held surface one particle wide?); the patch test is not "
+                "exact there (docs/solver.md, \"Boundary values\")\n",
+                r->reference->quadrature->held_fallback_count,
+                r->reference->quadrature->held_point_count +
+                    r->reference->quadrature->held_fallback_count);
     double frame_bytes = 0.0;
     long frames = planned_frames(r, &frame_bytes);
     if (!r->options->quiet)

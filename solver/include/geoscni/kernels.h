@@ -185,6 +185,10 @@ struct gsn_quadrature {
     double *boundary_point_position; /* x 3, m */
     double *boundary_point_weight;   /* m^2 */
     struct gsn_shape_rows boundary_values;
+    /* points of held facets (gsn_kernel_options.held_facet) that integrate
+     * the interpolant through the held particles, and those that keep
+     * Psi_I because their held particles do not span them */
+    int held_point_count, held_fallback_count;
     struct gsn_rk *rk; /* the shape functions (owned) */
 };
 
