@@ -1016,6 +1016,7 @@ int gsn_quadrature_create(const struct gsn_model *m,
                               background_cell_count, floor, failure, q);
         if (rc == GSN_OK) {
             q->rk->failure_point = NULL;
+            q->support_repairs = attempt;
             *out = q;
             break;
         }

@@ -61,6 +61,7 @@ static int build(const struct gsn_model *m, const struct gsn_case *c,
                                  loop));
     if (report) {
         report->seconds_kernels = t1 - t0;
+        report->support_repairs = (*quadrature)->support_repairs;
         report->seconds_constraints = t2 - t1;
         report->seconds_loop = omp_get_wtime() - t2;
     }

@@ -63,6 +63,7 @@ struct gsn_reference_report {
     int remeshed;        /* 1: the body's tetrahedra were made again */
     int tetrahedra_only; /* 1: the cells needed the tetrahedra throughout */
     double body_quality; /* smallest tetrahedron volume / mean before */
+    int support_repairs; /* points whose supports were repaired */
 };
 
 struct gsn_reference {

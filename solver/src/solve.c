@@ -872,11 +872,15 @@ static int update_reference(struct run *r)
     r->total_steps = steps_to_end(r);
     if (!r->options->quiet) {
         const double *x = &r->model.position[3 * report.particle];
+        char repairs[64] = "";
+        if (report.support_repairs > 0)
+            snprintf(repairs, sizeof repairs, " (%d supports repaired)",
+                     report.support_repairs);
         fprintf(stderr,
                 "%sreference update %d at step %ld, t = %.4g s (%s: |E| %.3g, "
                 "det F %.3g..%.3g, at particle %d, first at %g, %g, %g): "
                 "%.2f s (cells %.2f, kernels %.2f, constraints %.2f, loop "
-                "%.2f, state %.2f, stable step %.2f)%s, step %.4g s of a "
+                "%.2f, state %.2f, stable step %.2f)%s%s, step %.4g s of a "
                 "stable %.4g s, kinetic energy %.4g -> %.4g J, mass "
                 "%.1e, momentum %.1e, %d failed particles\n",
                 isatty(STDERR_FILENO) ? "\r" : "", r->reference->update_count,
@@ -887,9 +891,9 @@ static int update_reference(struct run *r)
                 report.seconds_constraints, report.seconds_loop,
                 report.seconds_state, report.seconds_stable,
                 report.remeshed ? " (body's tetrahedra made again)" : "",
-                report.time_step, report.stable_step, report.kinetic_before,
-                report.kinetic_after, report.mass_error, report.momentum_error,
-                e->dead_count);
+                repairs, report.time_step, report.stable_step,
+                report.kinetic_before, report.kinetic_after, report.mass_error,
+                report.momentum_error, e->dead_count);
         fflush(stderr);
     }
     return GSN_OK;

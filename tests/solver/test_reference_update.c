@@ -469,6 +469,8 @@ static void test_support_repair(void)
     if (rc != GSN_OK)
         gsn_error_print(stderr);
     TEST_INT(rc, GSN_OK);
+    /* the repairs are counted (the update line reports them) */
+    TEST_TRUE(rc != GSN_OK || q->support_repairs >= 1);
     /* reproducing conditions at the particles and the boundary points */
     double worst = 0.0;
     const struct gsn_shape_rows *sets[2] = {&q->particle_values,

@@ -189,6 +189,8 @@ struct gsn_quadrature {
      * the interpolant through the held particles, and those that keep
      * Psi_I because their held particles do not span them */
     int held_point_count, held_fallback_count;
+    /* points whose supports were repaired (gsn_quadrature_create) */
+    int support_repairs;
     struct gsn_rk *rk; /* the shape functions (owned) */
 };
 
