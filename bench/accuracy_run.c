@@ -18,7 +18,7 @@
  * started in the exact first mode v_z = V cos(pi z / (2H)), whose mid-plane
  * z = H stays still by antisymmetry (the same closed form, the same f1).
  * (The mirror dates from when the loop refused Gauss points; every method
- * now runs through the same loop with the same boundary term and its own
+ * now runs through the same loop with the same essential boundaries and its own
  * lumped mass, eq. (28), and the mirror is kept so that the nodal methods'
  * numbers stay those of the first chart.)
  * Exact: u_z(z, t) = (V / w) cos(pi z / (2H)) sin(w t), u_x = u_y = 0,
@@ -339,7 +339,8 @@ static int run(const struct problem *p, struct gsn_case *c,
     struct gsn_kernel_options kernel;
     gsn_kernel_options_from_case(c, &kernel);
     GSN_CALL_GOTO(gsn_constraints_discretize(&model, c, &kernel, background,
-                                             cells, NULL, &q, &constraints),
+                                             cells, NULL, &q, &constraints,
+                                             NULL),
                   rc, done);
     GSN_CALL_GOTO(
         gsn_material_model_create(gsn_material_name_for_case(&c->material),

@@ -4,6 +4,7 @@
 
 #include <klu.h>
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -61,17 +62,19 @@ struct component_constraint {
 struct gsn_constraints {
     int particle_count;
     int surface_count;
-    double ramp;        /* s, time.ramp */
-    double epoch;       /* s: displacements are prescribed from then on (the
-                           time of the last reference update) */
-    int *surface_mask;  /* per model surface: constrained components */
-    unsigned *released; /* particles: entries that let them go, or NULL */
-    int *surface_entry; /* per model surface: the entry naming it, or 0 */
-    int *entry_of;      /* particles x 3: the boundary entry whose
-                           prescription holds the component, or -1 */
-    int *slot[3];       /* slot[c][I]: position of I in B_c, or -1 */
-    int factorized;     /* gsn_constraints_set_mass has run */
-    int boundary_only;  /* gsn_constraints_set_boundary_only */
+    double ramp;           /* s, time.ramp */
+    double epoch;          /* s: displacements are prescribed from then on (the
+                              time of the last reference update) */
+    int *surface_mask;     /* per model surface: constrained components */
+    unsigned *released;    /* particles: entries that let them go, or NULL */
+    int *surface_entry;    /* per model surface: the entry naming it, or 0 */
+    int *entry_of;         /* particles x 3: the boundary entry whose
+                              prescription holds the component, or -1 */
+    int *slot[3];          /* slot[c][I]: position of I in B_c, or -1 */
+    double *mass;          /* the lumped masses of gsn_constraints_set_mass */
+    int factorized;        /* S_c formed and factorized with them */
+    int boundary_only;     /* gsn_constraints_set_boundary_only */
+    double factor_seconds; /* wall time spent factorizing, s */
     struct component_constraint component[3];
 };
 
@@ -101,6 +104,7 @@ void gsn_constraints_destroy(struct gsn_constraints **constraints)
         free(k->slot[c]);
     }
     free(k->surface_mask);
+    free(k->mass);
     free(k->entry_of);
     free(k->released);
     free(k->surface_entry);
@@ -371,8 +375,10 @@ static int component_build(struct gsn_constraints *k, int c,
     cc->row_index = malloc(sizeof(int) * (entries ? entries : 1));
     cc->row_value = malloc(sizeof(double) * (entries ? entries : 1));
     int *position = calloc((size_t)n + 1, sizeof(int));
-    GSN_CHECK(cc->row_index && cc->row_value && position, GSN_ERR_MEMORY,
-              "out of memory");
+    if (!(cc->row_index && cc->row_value && position)) {
+        free(position);
+        GSN_CHECK(0, GSN_ERR_MEMORY, "out of memory");
+    }
     for (size_t s = 0; s < count; ++s) {
         int p = cc->particle[s], e0 = values->offset[p];
         memcpy(cc->row_index + cc->row_offset[s], values->index + e0,
@@ -523,13 +529,40 @@ done:
 int gsn_constraints_set_mass(struct gsn_constraints *constraints,
                              const double *mass)
 {
+    size_t n = (size_t)constraints->particle_count;
+    if (!constraints->mass) {
+        constraints->mass = malloc(sizeof(double) * (n ? n : 1));
+        GSN_CHECK(constraints->mass, GSN_ERR_MEMORY, "out of memory");
+    }
+    memcpy(constraints->mass, mass, sizeof(double) * n);
+    constraints->factorized = 0;
+    return GSN_OK;
+}
+
+/* S_c of the masses last set, formed and factorized where they changed
+ * (the first correction after gsn_constraints_set_mass: a reference
+ * update sets the masses twice, and factorizes once). */
+static int ensure_factorized(struct gsn_constraints *constraints)
+{
+    if (constraints->factorized)
+        return GSN_OK;
+    GSN_CHECK(constraints->mass, GSN_ERR_INTERNAL,
+              "the constraints have no mass (gsn_constraints_set_mass)");
+    double start = omp_get_wtime();
     for (int c = 0; c < 3; ++c)
         if (constraints->component[c].count > 0)
             GSN_CALL(component_factorize(
-                &constraints->component[c], mass, constraints->slot[c],
-                constraints->boundary_only, component_names[c]));
+                &constraints->component[c], constraints->mass,
+                constraints->slot[c], constraints->boundary_only,
+                component_names[c]));
     constraints->factorized = 1;
+    constraints->factor_seconds += omp_get_wtime() - start;
     return GSN_OK;
+}
+
+double gsn_constraints_factor_seconds(const struct gsn_constraints *constraints)
+{
+    return constraints->factor_seconds;
 }
 
 /* The prescriptions of case `given` on model m (symmetry entries resolved):
@@ -707,8 +740,7 @@ int gsn_constraints_apply(struct gsn_constraints *constraints,
      * same bits on any thread count. */
     GSN_CHECK(values->row_count == constraints->particle_count,
               GSN_ERR_INTERNAL, "shape values are not one row per particle");
-    GSN_CHECK(constraints->factorized, GSN_ERR_INTERNAL,
-              "the constraints have no mass (gsn_constraints_set_mass)");
+    GSN_CALL(ensure_factorized(constraints));
     double factor = gsn_ramp_factor(constraints->ramp, kind, time);
     if (kind == GSN_FIELD_DISPLACEMENT)
         factor -= gsn_ramp_factor(constraints->ramp, kind, constraints->epoch);
@@ -726,8 +758,7 @@ int gsn_constraints_apply(struct gsn_constraints *constraints,
 int gsn_constraints_multipliers(struct gsn_constraints *constraints,
                                 const double *force, double *multiplier)
 {
-    GSN_CHECK(constraints->factorized, GSN_ERR_INTERNAL,
-              "the constraints have no mass (gsn_constraints_set_mass)");
+    GSN_CALL(ensure_factorized(constraints));
     memset(multiplier, 0,
            sizeof(double) * 3 * (size_t)constraints->particle_count);
     for (int c = 0; c < 3; ++c) {
@@ -808,10 +839,12 @@ int gsn_constraints_discretize(
     const struct gsn_model *m, const struct gsn_case *c,
     const struct gsn_kernel_options *options, const double *background_cells,
     int background_cell_count, const unsigned *released,
-    struct gsn_quadrature **quadrature, struct gsn_constraints **constraints)
+    struct gsn_quadrature **quadrature, struct gsn_constraints **constraints,
+    double seconds[2])
 {
     *quadrature = NULL;
     *constraints = NULL;
+    double start = omp_get_wtime();
     struct gsn_kernel_options kernel = *options;
     int *held_facet = NULL, *held_particle = NULL;
     int rc = gsn_constraints_held(m, c, released, &held_facet, &held_particle);
@@ -822,9 +855,14 @@ int gsn_constraints_discretize(
                                    background_cell_count, quadrature);
     free(held_facet);
     free(held_particle);
+    double built = omp_get_wtime();
     if (rc == GSN_OK)
         rc = gsn_constraints_create(m, c, &(*quadrature)->particle_values,
                                     released, constraints);
+    if (seconds) {
+        seconds[0] = built - start;
+        seconds[1] = omp_get_wtime() - built;
+    }
     if (rc != GSN_OK)
         gsn_quadrature_destroy(quadrature);
     return rc;
@@ -833,4 +871,5 @@ int gsn_constraints_discretize(
 void gsn_constraints_set_boundary_only(struct gsn_constraints *constraints)
 {
     constraints->boundary_only = 1;
+    constraints->factorized = 0;
 }

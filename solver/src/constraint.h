@@ -70,31 +70,37 @@ int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
 /* The components constrained on a facet of model surface `surface` owned
  * by particle `owner`: gsn_constraints_surface_mask, or 0 where the
  * surface's entry has released the owner (a rigid body's particle that
- * has left its base is free there, and so is the boundary term). */
+ * has left its base is free there). */
 int gsn_constraints_facet_mask(const struct gsn_constraints *constraints,
                                int surface, int owner);
 
 /* The quadrature of model m with the held facets of case c
  * (gsn_constraints_held, into a copy of options), then the constraints on
- * its shape values: the build every solver of a case goes through. */
+ * its shape values: the build every solver of a case goes through.
+ * seconds (NULL: not wanted): the wall time of the two (s). */
 int gsn_constraints_discretize(
     const struct gsn_model *m, const struct gsn_case *c,
     const struct gsn_kernel_options *options, const double *background_cells,
     int background_cell_count, const unsigned *released,
-    struct gsn_quadrature **quadrature, struct gsn_constraints **constraints);
+    struct gsn_quadrature **quadrature, struct gsn_constraints **constraints,
+    double seconds[2]);
 
 /* Frees; NULL-safe, nulls the handle. */
 void gsn_constraints_destroy(struct gsn_constraints **constraints);
 
-/* Forms and factorizes S_c = C_c M^-1 C_c^T with the lumped masses (n,
- * kg); before any gsn_constraints_apply. */
+/* The lumped masses (n, kg; copied) of S_c = C_c M^-1 C_c^T, which the
+ * next correction forms and factorizes; before any gsn_constraints_apply. */
 int gsn_constraints_set_mass(struct gsn_constraints *constraints,
                              const double *mass);
 
+/* Wall time spent forming and factorizing S_c so far (s). */
+double
+gsn_constraints_factor_seconds(const struct gsn_constraints *constraints);
+
 /* The correction of before 2026-12-02 evening, for a negative control
  * only: the coefficients of B_c alone, Lambda_c^-1 (prescribed - C f), not
- * mass-orthogonal (its force is M times the correction); takes effect at
- * the next gsn_constraints_set_mass. */
+ * mass-orthogonal (its force is M times the correction); from the next
+ * correction on. */
 void gsn_constraints_set_boundary_only(struct gsn_constraints *constraints);
 
 /* Corrects field (n x 3 coefficients) in place, by the mass-orthogonal

@@ -516,8 +516,12 @@ static double squared_distance(const double *a, const double *b)
  * surface). */
 #define HELD_PIVOT 1e-10
 /* The interpolant must reproduce 1 and x to this (relative to the
- * stencil's radius); else the point keeps Psi_I itself. */
+ * stencil's radius), with weights whose magnitudes add up to at most
+ * HELD_WEIGHT_SUM (a nearly collinear stencil reproduces a point off its
+ * line only with large weights of both signs); else the point keeps
+ * Psi_I itself. */
 #define HELD_REPRODUCTION 1e-9
+#define HELD_WEIGHT_SUM 3.0
 
 static void held_stencils_free(struct held_stencils *h)
 {
@@ -607,14 +611,16 @@ static int held_weights(const double *X, int count, const double x[3],
     }
     for (int i = 0; i < rank; ++i)
         a[perm[i]] = y[i];
-    double moment[4] = {0};
+    double moment[4] = {0}, magnitude = 0.0;
     for (int k = 0; k < count; ++k) {
         phi[k] = w[k] * (p[k][0] * a[0] + p[k][1] * a[1] + p[k][2] * a[2] +
                          p[k][3] * a[3]);
+        magnitude += fabs(phi[k]);
         for (int b = 0; b < 4; ++b)
             moment[b] += phi[k] * p[k][b];
     }
-    return fabs(moment[0] - 1.0) <= HELD_REPRODUCTION &&
+    return magnitude <= HELD_WEIGHT_SUM &&
+           fabs(moment[0] - 1.0) <= HELD_REPRODUCTION &&
            fabs(moment[1]) <= HELD_REPRODUCTION &&
            fabs(moment[2]) <= HELD_REPRODUCTION &&
            fabs(moment[3]) <= HELD_REPRODUCTION;
@@ -893,9 +899,10 @@ static int quadrature_build(const struct gsn_model *m,
                                    &q->gradient));
         return GSN_OK;
     }
-    GSN_CALL(nodal_points(m, q));
     int *offset = NULL, *facet = NULL;
-    rc = particle_facets(m, &offset, &facet);
+    rc = nodal_points(m, q);
+    if (rc == GSN_OK)
+        rc = particle_facets(m, &offset, &facet);
     c.particle_facet_offset = offset;
     c.particle_facet = facet;
     if (rc == GSN_OK && dni) {

@@ -64,6 +64,7 @@ struct gsn_reference_report {
     int tetrahedra_only; /* 1: the cells needed the tetrahedra throughout */
     double body_quality; /* smallest tetrahedron volume / mean before */
     int support_repairs; /* points whose supports were repaired */
+    int held_fallbacks;  /* points of held facets that keep Psi_I */
 };
 
 struct gsn_reference {

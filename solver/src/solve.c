@@ -510,6 +510,9 @@ static int write_checkpoint(struct run *r)
     GSN_CALL_GOTO(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_STEP_BASE,
                                         (int)e->step_base),
                   rc, done);
+    GSN_CALL_GOTO(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_BOUNDARIES,
+                                        GSN_CHECKPOINT_BOUNDARIES),
+                  rc, done);
     GSN_CALL_GOTO(gsn_h5_flush(r->results), rc, done);
 done:
     gsn_h5_close(&group);
@@ -532,8 +535,19 @@ static int read_checkpoint(struct run *r)
     hid_t group = H5Gopen2(r->results, GSN_CHECKPOINT_GROUP, H5P_DEFAULT);
     GSN_CHECK(group >= 0, GSN_ERR_IO, "%s: cannot open the checkpoint",
               r->results_path);
-    int rc = GSN_OK, step = 0;
+    int rc = GSN_OK, step = 0, boundaries = 0;
     double energy[4];
+    if (H5Aexists(group, GSN_CHECKPOINT_ATTR_BOUNDARIES) > 0)
+        GSN_CALL_GOTO(gsn_h5_attr_read_int(
+                          group, GSN_CHECKPOINT_ATTR_BOUNDARIES, &boundaries),
+                      rc, done);
+    GSN_CHECK_GOTO(boundaries == GSN_CHECKPOINT_BOUNDARIES, rc, GSN_ERR_INPUT,
+                   done,
+                   "%s: its checkpoint was written by a geoscni that imposed "
+                   "the essential boundaries otherwise (before 2026-12-02); "
+                   "this build cannot continue it: solve again without "
+                   "--restart",
+                   r->results_path);
     GSN_CALL_GOTO(read_checkpoint_reference(r, group), rc, done);
     e = r->reference->loop;
     GSN_CALL_GOTO(checkpoint_transfer(r, 0, energy), rc, done);
@@ -872,10 +886,12 @@ static int update_reference(struct run *r)
     r->total_steps = steps_to_end(r);
     if (!r->options->quiet) {
         const double *x = &r->model.position[3 * report.particle];
-        char repairs[64] = "";
-        if (report.support_repairs > 0)
-            snprintf(repairs, sizeof repairs, " (%d supports repaired)",
-                     report.support_repairs);
+        char repairs[128] = "";
+        if (report.support_repairs > 0 || report.held_fallbacks > 0)
+            snprintf(repairs, sizeof repairs,
+                     " (%d supports repaired, %d points of held facets keep "
+                     "Psi_I)",
+                     report.support_repairs, report.held_fallbacks);
         fprintf(stderr,
                 "%sreference update %d at step %ld, t = %.4g s (%s: |E| %.3g, "
                 "det F %.3g..%.3g, at particle %d, first at %g, %g, %g): "

@@ -143,9 +143,9 @@ static inline int fixture_solver_from_cells(const struct gsn_case *c, double dt,
     gsn_kernel_options_from_case(c, &kernel);
     int rc = GSN_OK;
     if (c->boundary_count > 0 && !fixture_plain_facets)
-        rc =
-            gsn_constraints_discretize(&s->model, c, &kernel, cells, cell_count,
-                                       NULL, &s->quadrature, &s->constraints);
+        rc = gsn_constraints_discretize(&s->model, c, &kernel, cells,
+                                        cell_count, NULL, &s->quadrature,
+                                        &s->constraints, NULL);
     else
         rc = gsn_quadrature_create(&s->model, &kernel, cells, cell_count,
                                    &s->quadrature);

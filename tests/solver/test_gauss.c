@@ -14,7 +14,10 @@
  * - Each Gauss point belongs to the nearest particle (brute force over all
  *   particles), and a particle's stress is the weighted mean of its points.
  * - Gauss 3x3x3: the first longitudinal mode of the 10 m column,
- *   f1 = c_p / (4 H), with the fixed base's boundary term. */
+ *   f1 = c_p / (4 H), the base fixed (the mass-orthogonal projection;
+ *   Gauss points do not smooth over the held facets, so their boundary
+ *   integral is not a reaction as SCNI's is: Gauss fails the patch test
+ *   anyway, docs/kernels.md). */
 #include "geoscni/case.h"
 #include "geoscni/tensor.h"
 #include "solver_fixtures.h"

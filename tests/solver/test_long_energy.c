@@ -51,10 +51,8 @@ static struct energy_run run(int stabilized, int small_strain, int sudden,
         return out;
     struct gsn_explicit *e = s.loop;
     e->legacy_boundary_term = legacy;
-    if (legacy) { /* and the correction of B_c alone */
+    if (legacy) /* and the correction of B_c alone */
         gsn_constraints_set_boundary_only(s.constraints);
-        TEST_INT(gsn_constraints_set_mass(s.constraints, e->mass), GSN_OK);
-    }
     double stable = 0.0;
     TEST_INT(gsn_explicit_stable_step(e, &stable), GSN_OK);
     e->dt = 0.8 * stable;

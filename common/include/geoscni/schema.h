@@ -141,7 +141,8 @@ struct gsn_dataset_info {
     X(GSN_CHECKPOINT_STRESS, "checkpoint/stress", GSN_H5_DOUBLE, 6, "Pa",      \
       "Cauchy stress at the integration points, Voigt xx yy zz xy yz xz")      \
     X(GSN_CHECKPOINT_REACTION, "checkpoint/reaction", GSN_H5_DOUBLE, 3, "N",   \
-      "reaction M a - f_ext + f_int on the constrained coefficients")          \
+      "reaction C^T lambda of the constraints' mass-orthogonal projection "    \
+      "(0 where it does not reach)")                                           \
     X(GSN_CHECKPOINT_ENERGY, "checkpoint/energy", GSN_H5_DOUBLE, 4, "J",       \
       "kinetic energy, internal energy, external work and damping work (one "  \
       "row)")                                                                  \
@@ -184,6 +185,11 @@ struct gsn_dataset_info {
 #define GSN_CHECKPOINT_ATTR_TIME_STEP "time_step"
 #define GSN_CHECKPOINT_ATTR_TIME_BASE "time_base"
 #define GSN_CHECKPOINT_ATTR_STEP_BASE "step_base"
+/* How the essential boundaries were imposed (GSN_CHECKPOINT_BOUNDARIES): a
+ * checkpoint without it was written before 2026-12-02 evening, with the
+ * boundary term and reactions on B_c only, and cannot be continued. */
+#define GSN_CHECKPOINT_ATTR_BOUNDARIES "boundaries"
+#define GSN_CHECKPOINT_BOUNDARIES 2 /* held facets, mass-orthogonal */
 
 #define GSN_DATASET_ENUM(id, path, type, columns, units, description) id,
 enum gsn_model_dataset {
