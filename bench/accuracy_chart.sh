@@ -1,8 +1,9 @@
 #!/bin/sh
 # The speed-and-accuracy chart (issue 7, point 1): one elastic problem with a
 # closed-form answer solved at several particle spacings with SCNI, SCNI +
-# MSCNI, DNI, Gauss 2x2x2 and Gauss 3x3x3; the error and the times (wall
-# clock and CPU) of every run go to a CSV, and error against time (log-log,
+# MSCNI, SCNI + NSNI, DNI, Gauss 2x2x2 and Gauss 3x3x3 (METHODS="..." runs
+# some of them); the error and the times (wall clock and CPU) of every run
+# go to a CSV, and error against time (log-log,
 # with each method's convergence rate against spacing in the legend) to a
 # PNG. The chart's time is the CPU time of a 1-thread run (build + steps):
 # on a shared machine, what the run would take on an idle core.
@@ -23,7 +24,7 @@ out=${2:-$root/docs/img}
 [ $# -gt 2 ] && shift 2 || set --
 problems=${*:-column column_jittered}
 threads=${THREADS:-1}
-methods="scni mscni dni gauss2 gauss3"
+methods=${METHODS:-scni mscni nsni dni gauss2 gauss3}
 run=$root/$build/bin/accuracy_run
 plot=$root/$build/bin/accuracy_plot
 [ -x "$run" ] && [ -x "$plot" ] || { echo "no $run or $plot: build first" >&2; exit 2; }

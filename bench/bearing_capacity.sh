@@ -38,10 +38,13 @@ for h in $spacings; do
     for kinematics in $kinematics_list; do
         case $method in
         scni) integration="scni" ;;
-        mscni) integration="{method: scni, stabilization: mscni}" ;;
+        mscni* | nsni*) # mscni0.5: MSCNI with coefficient 0.5
+            weight=${method#*nsni}
+            weight=${weight#mscni}
+            integration="{method: scni, stabilization: ${method%"$weight"}${weight:+, coefficient: $weight}}" ;;
         dni) integration="dni" ;;
         gauss2 | gauss3) integration="{method: gauss, points: ${method#gauss}}" ;;
-        *) echo "unknown method $method (scni, mscni, dni, gauss2, gauss3)" >&2; exit 2 ;;
+        *) echo "unknown method $method (scni, mscni, nsni, mscniC or nsniC with coefficient C, dni, gauss2, gauss3)" >&2; exit 2 ;;
         esac
         run=$out/h${h}_${method}_$kinematics
         mkdir -p "$run"

@@ -108,15 +108,18 @@ int main(int argc, char **argv)
            "threads\n",
            n, m.facet_count, m.facet_point_offset[m.facet_count], support,
            omp_get_max_threads());
-    const char *names[4] = {"scni", "scni + mscni 6", "scni + mscni 2", "dni"};
-    const enum gsn_integration method[4] = {
+    enum { METHODS = 5 };
+    const char *names[METHODS] = {"scni", "scni + mscni 6", "scni + mscni 2",
+                                  "scni + nsni", "dni"};
+    const enum gsn_integration method[METHODS] = {
         GSN_INTEGRATION_SCNI, GSN_INTEGRATION_SCNI, GSN_INTEGRATION_SCNI,
-        GSN_INTEGRATION_DNI};
-    const enum gsn_stabilization stab[4] = {
+        GSN_INTEGRATION_SCNI, GSN_INTEGRATION_DNI};
+    const enum gsn_stabilization stab[METHODS] = {
         GSN_STABILIZATION_NONE, GSN_STABILIZATION_MSCNI,
-        GSN_STABILIZATION_MSCNI, GSN_STABILIZATION_NONE};
-    const int subcells[4] = {6, 6, 2, 6};
-    for (int s = 0; s < 4; ++s) {
+        GSN_STABILIZATION_MSCNI, GSN_STABILIZATION_NSNI,
+        GSN_STABILIZATION_NONE};
+    const int subcells[METHODS] = {6, 6, 2, 6, 6};
+    for (int s = 0; s < METHODS; ++s) {
         struct gsn_kernel_options o = {
             1.5, 1, method[s], 2, stab[s], 1.0, subcells[s], 0, NULL, NULL};
         struct gsn_quadrature *q = NULL;

@@ -6,8 +6,10 @@
 # SETTLEMENT metres. Times each stage and prints particles, steps, the
 # footing's peak load and where it occurs.
 # RIGID=1 makes the footing a rigid body the soil cannot enter (rigid: true,
-# docs/solver.md "Rigid bodies").
-# Usage: [RIGID=1] bench/paper_slopes.sh [BUILD_DIR] [OUT] [FACTOR] [SETTLEMENT] [CASES]
+# docs/solver.md "Rigid bodies"). INTEGRATION replaces the case's
+# integration (e.g. "{method: scni, stabilization: mscni}").
+# Usage: [RIGID=1] [INTEGRATION=...] bench/paper_slopes.sh [BUILD_DIR] [OUT]
+#        [FACTOR] [SETTLEMENT] [CASES]
 #        (default build, out/paper, 5, 1.0, "slope_I slope_II")
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -17,6 +19,7 @@ factor=${3:-5}
 settlement=${4:-1.0}
 cases=${5:-slope_I slope_II}
 rigid=${RIGID:+, rigid: true}
+integration=${INTEGRATION:-}
 geoscni=$root/$build/bin/geoscni
 [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
 mkdir -p "$out"
@@ -33,7 +36,9 @@ for name in $cases; do
     sed -e "s|^geometry: *|geometry: $root/geometries/|" \
         -e "s|velocity: \[null, null, -$speed\]|velocity: [null, null, -$v]$rigid|" \
         -e "s|^\( *end:\).*|\1 $end|" -e "s|^\( *step:\).*|\1 auto|" \
-        -e "s|^\( *every:\).*|\1 $every|" "$source_case" >"$case_file"
+        -e "s|^\( *every:\).*|\1 $every|" \
+        -e "${integration:+s|^integration:.*|integration: $integration|}" \
+        "$source_case" >"$case_file"
     echo "$name: footing at $v m/s to $settlement m ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
     t=$(seconds)
     "$geoscni" pre "$case_file" -o "$out/$name" -q

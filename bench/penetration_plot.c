@@ -10,8 +10,11 @@
  * HISTORY: a run's history.csv with footing_uz_m and footing_fz_N; AREA:
  * the footing's area in the model (m^2; B = 1 m, s_u = 1 kPa). Rows of a
  * burst (q below 0 or above twice Salgado's) are left out of the curve, so
- * that they do not set the scale, and printed. Exit status 0, 1 (VTK or
- * I/O failed), 2 (bad input). */
+ * that they do not set the scale, and printed. Prints for every run its
+ * last settlement and the mean q / s_u over the settlement windows of
+ * docs/deep_penetration.md's table (0.15-0.25, 0.4-0.6, 0.8-1 B; single
+ * rows are chaotic beyond 0.3 B), the bursts left out. Exit status 0, 1
+ * (VTK or I/O failed), 2 (bad input). */
 #include "csv.h"
 #include "display.h"
 #include "vtk_output.h"
@@ -97,6 +100,27 @@ int main(int argc, char **argv)
         names[r] = argv[2 + 3 * r + 1];
         for (int i = 0; i < counts[r]; ++i)
             w_end = fmax(w_end, w[r][i]);
+    }
+    static const double window[][2] = {{0.15, 0.25}, {0.4, 0.6}, {0.8, 1.0}};
+    for (int r = 0; r < runs; ++r) {
+        double last = counts[r] > 0 ? w[r][counts[r] - 1] : 0.0;
+        printf("%s: to w / B = %.3f; mean q / s_u", names[r], last);
+        for (int k = 0; k < 3; ++k) {
+            double sum = 0.0;
+            int n = 0;
+            for (int i = 0; i < counts[r]; ++i)
+                if (w[r][i] >= window[k][0] && w[r][i] <= window[k][1]) {
+                    sum += q[r][i];
+                    ++n;
+                }
+            if (n > 0)
+                printf(" %.2f over %.2f-%.2f B (%d rows)%s", sum / n,
+                       window[k][0], window[k][1], n, k < 2 ? "," : "");
+            else
+                printf(" - over %.2f-%.2f B%s", window[k][0], window[k][1],
+                       k < 2 ? "," : "");
+        }
+        printf("\n");
     }
     /* the references over the runs' settlements */
     enum { REFERENCE_POINTS = 101 };

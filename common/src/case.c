@@ -469,11 +469,13 @@ static int read_kernel(struct reader *r, const yaml_node_t *root,
     return GSN_OK;
 }
 
+static const char *const stabilization_names[] = {"none", "mscni", "nsni",
+                                                  NULL};
+
 static int read_integration(struct reader *r, const yaml_node_t *root,
                             struct gsn_case *c)
 {
     static const char *const methods[] = {"scni", "dni", "gauss", NULL};
-    static const char *const stabilizations[] = {"none", "mscni", NULL};
     static const char *const keys[] = {"method", "points", "stabilization",
                                        "coefficient", NULL};
     yaml_node_t *node = mapping_find(r, root, "integration");
@@ -506,8 +508,16 @@ static int read_integration(struct reader *r, const yaml_node_t *root,
     yaml_node_t *stabilization = mapping_find(r, node, "stabilization");
     if (stabilization) {
         GSN_CALL(parse_word(r, stabilization, "integration.stabilization",
-                            stabilizations, &index));
+                            stabilization_names, &index));
         c->stabilization = (enum gsn_stabilization)index;
+        GSN_CHECK(c->stabilization != GSN_STABILIZATION_NSNI ||
+                      c->kernel_basis_order == 1,
+                  GSN_ERR_INPUT,
+                  "%s:%d: 'integration.stabilization: nsni' needs the linear "
+                  "basis (its strain gradients are the second derivatives "
+                  "of the linear RK functions): use 'kernel.basis: linear' "
+                  "or stabilization mscni",
+                  r->path, node_line(stabilization));
     }
     int line = node_line(node);
     GSN_CALL(read_number(r, node, "integration", "coefficient",
@@ -515,14 +525,15 @@ static int read_integration(struct reader *r, const yaml_node_t *root,
     GSN_CHECK(c->stabilization_coefficient > 0.0 &&
                   c->stabilization_coefficient <= 1.0,
               GSN_ERR_INPUT,
-              "%s:%d: 'integration.coefficient' (the weight of the MSCNI "
-              "sub-cells) must be in (0, 1], got %g",
+              "%s:%d: 'integration.coefficient' (the weight of the "
+              "stabilization: MSCNI's sub-cells, NSNI's strain gradients) "
+              "must be in (0, 1], got %g",
               r->path, line, c->stabilization_coefficient);
     GSN_CHECK(c->stabilization != GSN_STABILIZATION_NONE ||
                   !mapping_find(r, node, "coefficient"),
               GSN_ERR_INPUT,
               "%s:%d: 'integration.coefficient' applies to stabilization: "
-              "mscni only",
+              "mscni or nsni only",
               r->path, line);
     return GSN_OK;
 }
@@ -1076,6 +1087,12 @@ const char *gsn_integration_name(enum gsn_integration integration)
     return (unsigned)integration < 3 ? names[integration] : "unknown";
 }
 
+const char *gsn_stabilization_name(enum gsn_stabilization stabilization)
+{
+    return (unsigned)stabilization < 3 ? stabilization_names[stabilization]
+                                       : "unknown";
+}
+
 static void write_components(FILE *out, const int present[3],
                              const double value[3])
 {
@@ -1091,7 +1108,6 @@ static void write_components(FILE *out, const int present[3],
 
 int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
 {
-    static const char *const stabilization_names[] = {"none", "mscni"};
     static const char *const basis_names[] = {"", "linear", "quadratic"};
     const struct gsn_material *m = &c->material;
     fprintf(out, "# resolved parameters of %s\n", c->path);

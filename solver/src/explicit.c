@@ -784,8 +784,8 @@ static void elastic_piola(const double sigma[6], double w, double P[9])
 }
 
 /* The force of a stabilization point's stress sigma (weight w) on packed
- * row r, scattered as P_s B_s into the slots, and -P_s B_L folded into its
- * nodal point's P (point_blocks.h). */
+ * row r, scattered as P_s B_s into the slots, and with MSCNI -P_s B_L
+ * folded into its nodal point's P (point_blocks.h). */
 static void subcell_scatter(const struct gsn_point_blocks *b, int r,
                             const double sigma[6], double w, double fold[9],
                             double *f4)
@@ -793,19 +793,23 @@ static void subcell_scatter(const struct gsn_point_blocks *b, int r,
     double P[9];
     elastic_piola(sigma, w, P);
     row_scatter(b, r, P, f4);
-    for (int a = 0; a < 9; ++a)
+    for (int a = 0; a < 9 && b->relative; ++a)
         fold[a] -= P[a];
 }
 
 /* Stabilization point s of particle L (block k): the elastic stress rate of
- * its row B_s - B_L (Puso et al. 2008), which vanishes for every linear
- * displacement field, scaled by the elastic share of L's nodal point in
- * this step: the sub-cell deviations then yield with the soil instead of
+ * its row, MSCNI's B_s - B_L (Puso et al. 2008) or NSNI's strain gradient
+ * (Hillman & Chen 2016), both zero for every linear displacement field.
+ * MSCNI's rate is scaled by the elastic share of L's nodal point in this
+ * step: the sub-cell deviations then yield with the soil instead of
  * adding an elastic stiffness that grows without bound once it flows
- * (docs/solver.md, "Stabilization"). (B_s - B_L) du = B_s du - dH_L with
- * the increment dH_L of the nodal point; the force P_s (B_s - B_L) is
- * scattered as P_s B_s here and -P_s B_L through fold, the nodal point's
- * P. */
+ * (docs/solver.md, "Stabilization"); NSNI's shear part is, its volumetric
+ * part stays elastic (a flowing particle keeps its bulk stiffness; with
+ * the whole rate scaled, particles at the faces of a pressed soil block
+ * collapse to det F 0.03, tests/solver/test_checkerboard.c). MSCNI:
+ * (B_s - B_L) du = B_s du - dH_L with the increment dH_L of the nodal
+ * point; the force P_s (B_s - B_L) is scattered as P_s B_s here and
+ * -P_s B_L through fold, the nodal point's P. */
 static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
                                 const double *u4, const double dH_L[9],
                                 double share, double fold[9], double *f4)
@@ -819,12 +823,15 @@ static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
     double w = q->point_weight[p];
     double dH[9], deps[6], rate[6], sigma[6], mean[6];
     row_gradient(b, r, u4, dH);
-    for (int a = 0; a < 9; ++a)
+    for (int a = 0; a < 9 && b->relative; ++a)
         dH[a] -= dH_L[a];
     gsn_matrix_sym_to_voigt(dH, deps);
-    elastic_stress(e->bulk_modulus, e->shear_modulus, deps, rate);
+    elastic_stress(e->bulk_modulus,
+                   b->relative ? e->shear_modulus : share * e->shear_modulus,
+                   deps, rate);
+    double scale = b->relative ? share : 1.0;
     for (int a = 0; a < 6; ++a)
-        sigma[a] = e->stress[6 * p + a] + share * rate[a];
+        sigma[a] = e->stress[6 * p + a] + scale * rate[a];
     for (int a = 0; a < 6; ++a)
         mean[a] = 0.5 * (e->stress[6 * p + a] + sigma[a]);
     memcpy(&e->stress[6 * p], sigma, sizeof sigma);
@@ -939,7 +946,7 @@ static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
                 continue; /* an empty sub-cell */
             double Hs[9];
             row_gradient(b, r, u4, Hs);
-            for (int a = 0; a < 9; ++a)
+            for (int a = 0; a < 9 && b->relative; ++a)
                 Hs[a] -= HL[a];
             gsn_matrix_sym_to_voigt(Hs, eps);
             elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);

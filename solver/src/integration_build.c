@@ -788,10 +788,80 @@ static int nodal_points(const struct gsn_model *m, struct gsn_quadrature *q)
     return GSN_OK;
 }
 
-static int stabilize(const struct gsn_model *m, struct facet_context *c,
-                     double coefficient, struct gsn_quadrature *q)
+/* ---- NSNI: strain gradients at the nodal points ---------------------------
+ * Naturally stabilized nodal integration (Hillman & Chen 2016): the strain
+ * in the nodal domain is expanded about X_L, eps(x) = eps_L + (x - X_L) .
+ * grad eps(X_L), so that int_{Omega_L} eps : C : eps takes, besides the
+ * nodal term, sum_k M_Lk eps_,k : C : eps_,k with the second moments
+ * M_Lk = int_{Omega_L} (x_k - X_Lk)^2 (the first moments are left out).
+ * Row 3 L + k holds d/dX_k grad Psi_I(X_L), the gradient row of dPsi_I/dX_k:
+ * eps_,k = sym(sum_I d_I (x) row), zero for every linear field (linear
+ * completeness, eq. (18)), while a checkerboard, invisible to B_L, has
+ * large second derivatives. Here the second derivatives are the direct ones
+ * of the linear RK functions (the paper's implicit gradients are a cheaper
+ * build of the same thing); one evaluation per row, at the particle. */
+static int nsni_row(void *context, int row, struct kernel_thread *t)
 {
-    size_t n = (size_t)m->particle_count, ns = c->subcells * n, total = n + ns;
+    const struct facet_context *c = context;
+    int L = row / 3, k = row % 3, count;
+    int rc = kernel_evaluate(c->rk, c->m->position + 3 * (size_t)L, 2, t,
+                             &count, "NSNI point", L);
+    if (rc != GSN_OK)
+        return rc;
+    for (int n = 0; n < count; ++n)
+        if (kernel_row_push(t, t->index[n], 0.0, t->hessian + 9 * n + 3 * k)) {
+            snprintf(t->message, sizeof t->message, "out of memory at row %d",
+                     row);
+            return GSN_ERR_MEMORY;
+        }
+    return GSN_OK;
+}
+
+/* coefficient M_Lk and X_L for the three NSNI points of every particle:
+ * M_Lk = int y_k^2 dV = (1/5) sum over the facets of int y_k^2 (y . N) dS,
+ * y = x - X_L (the divergence of y y_k^2 is 5 y_k^2), exact with the
+ * facets' degree-2 points and a fair estimate with one point each. */
+static void nsni_weights(const struct gsn_model *m,
+                         const struct facet_context *c, double coefficient,
+                         double *weight, double *position)
+{
+#pragma omp parallel for schedule(static)
+    for (int L = 0; L < m->particle_count; ++L) {
+        const double *X = m->position + 3 * (size_t)L;
+        double moment[3] = {0, 0, 0};
+        for (int e = c->particle_facet_offset[L];
+             e < c->particle_facet_offset[L + 1]; ++e) {
+            int f = c->particle_facet[e];
+            double sign = m->facet_owner[f] == L ? 1.0 : -1.0;
+            const double *normal = m->facet_normal + 3 * (size_t)f;
+            for (int q = m->facet_point_offset[f];
+                 q < m->facet_point_offset[f + 1]; ++q) {
+                const double *x = m->facet_point + 3 * (size_t)q;
+                double y[3] = {x[0] - X[0], x[1] - X[1], x[2] - X[2]};
+                double flux =
+                    sign * m->facet_weight[q] *
+                    (y[0] * normal[0] + y[1] * normal[1] + y[2] * normal[2]);
+                for (int k = 0; k < 3; ++k)
+                    moment[k] += y[k] * y[k] * flux;
+            }
+        }
+        for (int k = 0; k < 3; ++k) {
+            size_t p = 3 * (size_t)L + (size_t)k;
+            weight[p] = coefficient * fmax(moment[k] / 5.0, 0.0);
+            memcpy(position + 3 * p, X, 3 * sizeof(double));
+        }
+    }
+}
+
+/* Appends the stabilization points (MSCNI sub-cells or NSNI strain
+ * gradients, S per particle) to the nodal points. */
+static int stabilize(const struct gsn_model *m, struct facet_context *c,
+                     enum gsn_stabilization kind, double coefficient,
+                     struct gsn_quadrature *q)
+{
+    int nsni = kind == GSN_STABILIZATION_NSNI;
+    size_t S = nsni ? 3 : (size_t)c->subcells;
+    size_t n = (size_t)m->particle_count, ns = S * n, total = n + ns;
     double *w = realloc(q->point_weight, total * sizeof *w);
     GSN_CHECK(w, GSN_ERR_MEMORY, "cannot grow points");
     q->point_weight = w;
@@ -802,11 +872,12 @@ static int stabilize(const struct gsn_model *m, struct facet_context *c,
     GSN_CHECK(owner, GSN_ERR_MEMORY, "cannot grow points");
     q->point_particle = owner;
     for (size_t s = 0; s < ns; ++s)
-        owner[n + s] = (int)(s / c->subcells);
-    mscni_weights(m, c, coefficient, w + n, x + 3 * n);
+        owner[n + s] = (int)(s / S);
+    (nsni ? nsni_weights : mscni_weights)(m, c, coefficient, w + n, x + 3 * n);
     struct gsn_shape_rows rows;
     c->nodal = &q->gradient;
-    GSN_CALL(kernel_rows_build(c->rk, (int)ns, mscni_row, c, 0, 1, &rows));
+    GSN_CALL(kernel_rows_build(c->rk, (int)ns, nsni ? nsni_row : mscni_row, c,
+                               0, 1, &rows));
     GSN_CALL(rows_append(&q->gradient, &rows));
     q->point_count = (int)total;
     return GSN_OK;
@@ -836,9 +907,14 @@ static int quadrature_build(const struct gsn_model *m,
     GSN_CHECK(o->stabilization == GSN_STABILIZATION_NONE ||
                   o->integration != GSN_INTEGRATION_GAUSS,
               GSN_ERR_INPUT,
-              "stabilization mscni applies to nodal integration (scni or "
-              "dni), not gauss");
-    GSN_CHECK(o->stabilization == GSN_STABILIZATION_NONE ||
+              "stabilization %s applies to nodal integration (scni or "
+              "dni), not gauss",
+              gsn_stabilization_name(o->stabilization));
+    GSN_CHECK(o->stabilization != GSN_STABILIZATION_NSNI || o->basis_order == 1,
+              GSN_ERR_INPUT,
+              "stabilization nsni needs the linear basis (kernel.basis: "
+              "linear)");
+    GSN_CHECK(o->stabilization != GSN_STABILIZATION_MSCNI ||
                   o->stabilization_subcells == 2 ||
                   o->stabilization_subcells == 6,
               GSN_ERR_INPUT, "MSCNI sub-cells %d: only 2 or 6",
@@ -924,8 +1000,9 @@ static int quadrature_build(const struct gsn_model *m,
     } else if (rc == GSN_OK) {
         rc = kernel_rows_build(q->rk, n, scni_row, &c, 0, 1, &q->gradient);
     }
-    if (rc == GSN_OK && o->stabilization == GSN_STABILIZATION_MSCNI)
-        rc = stabilize(m, &c, o->stabilization_coefficient, q);
+    if (rc == GSN_OK && o->stabilization != GSN_STABILIZATION_NONE)
+        rc =
+            stabilize(m, &c, o->stabilization, o->stabilization_coefficient, q);
     free(offset);
     free(facet);
     held_stencils_free(&held);

@@ -23,8 +23,13 @@ int kernel_evaluate(const struct gsn_rk *rk, const double *x, int want_gradient,
         return GSN_ERR_INPUT;
     }
     double condition;
-    if (gsn_rk_shape_point(rk, x, *count, t->index, t->work, t->psi,
-                           want_gradient ? t->gradient : NULL, &condition)) {
+    int failed = want_gradient == 2
+                     ? gsn_rk_hessian_point(rk, x, *count, t->index, t->work,
+                                            t->hessian, &condition)
+                     : gsn_rk_shape_point(
+                           rk, x, *count, t->index, t->work, t->psi,
+                           want_gradient ? t->gradient : NULL, &condition);
+    if (failed) {
         snprintf(t->message, sizeof t->message,
                  "%s %d at (%g, %g, %g): moment matrix singular or "
                  "ill-conditioned (condition number %.3g, limit %.3g) with %d "
@@ -72,6 +77,7 @@ static void thread_free(struct kernel_thread *t)
     free(t->index);
     free(t->psi);
     free(t->gradient);
+    free(t->hessian);
     free(t->work);
     free(t->dense);
     free(t->mark);
@@ -88,12 +94,13 @@ static int thread_allocate(struct kernel_thread *t, const struct gsn_rk *rk)
     t->index = malloc(cap * sizeof *t->index);
     t->psi = malloc(cap * sizeof *t->psi);
     t->gradient = malloc(3 * cap * sizeof *t->gradient);
+    t->hessian = malloc(9 * cap * sizeof *t->hessian);
     t->work = malloc(gsn_rk_work_size(rk, (int)cap) * sizeof *t->work);
     t->dense = calloc(3 * n, sizeof *t->dense);
     t->mark = calloc(n, sizeof *t->mark);
     t->touched = malloc(n * sizeof *t->touched);
-    return t->index && t->psi && t->gradient && t->work && t->dense &&
-           t->mark && t->touched;
+    return t->index && t->psi && t->gradient && t->hessian && t->work &&
+           t->dense && t->mark && t->touched;
 }
 
 int kernel_rows_build(const struct gsn_rk *rk, int row_count, kernel_row_fn fn,

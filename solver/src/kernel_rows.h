@@ -13,6 +13,7 @@ struct kernel_thread {
     int *index;       /* GSN_RK_MAX_NEIGHBOURS */
     double *psi;      /* GSN_RK_MAX_NEIGHBOURS */
     double *gradient; /* 3 GSN_RK_MAX_NEIGHBOURS */
+    double *hessian;  /* 9 GSN_RK_MAX_NEIGHBOURS */
     double *work;     /* gsn_rk_work_size for GSN_RK_MAX_NEIGHBOURS */
     double *dense;    /* 3 per particle, zero between rows */
     int *mark;        /* 1 per particle, 0 between rows */
@@ -27,7 +28,8 @@ struct kernel_thread {
 };
 
 /* Finds the particles covering x and evaluates Psi (and grad Psi if
- * want_gradient) there into t->index, t->psi, t->gradient; *count gets
+ * want_gradient is 1) there into t->index, t->psi, t->gradient, or only the
+ * second derivatives into t->hessian if it is 2; *count gets
  * their number. On failure returns GSN_ERR_INPUT (too many neighbours) or
  * GSN_ERR_NUMERICAL (moment matrix singular or ill-conditioned) with
  * t->message naming the point ("what which"), its position and its

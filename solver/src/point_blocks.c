@@ -36,14 +36,15 @@ size_t gsn_point_blocks_bytes(const struct gsn_point_blocks *b)
            ((size_t)b->block_point[b->block_count] + 1) * sizeof(int);
 }
 
-/* B_s of stabilization point p (particle L) into index/gradient, from the
- * quadrature's row B_s - B_L and the nodal row B_L (both ascending):
- * (B_s - B_L) + B_L, leaving out the entries that come out exactly zero
- * (those of B_L alone). Returns the entry count. */
-static int subcell_row(const struct gsn_shape_rows *g, int p, int L, int *index,
-                       double *gradient)
+/* The stored row of stabilization point p (particle L) into
+ * index/gradient: with MSCNI (relative) B_s, from the quadrature's row
+ * B_s - B_L and the nodal row B_L (both ascending): (B_s - B_L) + B_L,
+ * leaving out the entries that come out exactly zero (those of B_L alone);
+ * with NSNI the quadrature's row as it is. Returns the entry count. */
+static int subcell_row(const struct gsn_shape_rows *g, int relative, int p,
+                       int L, int *index, double *gradient)
 {
-    int count = 0, l = g->offset[L], l1 = g->offset[L + 1];
+    int count = 0, l = g->offset[L], l1 = relative ? g->offset[L + 1] : l;
     for (int k = g->offset[p]; k < g->offset[p + 1]; ++k) {
         int particle = g->index[k];
         double v[3] = {g->gradient[3 * (size_t)k],
@@ -97,7 +98,8 @@ static int cut_blocks(struct gsn_point_blocks *b,
         }
         for (int L = p0; L < p1; ++L)
             for (int s = 0; s < S; ++s) {
-                entries += subcell_row(g, n + S * L + s, L, NULL, NULL);
+                entries +=
+                    subcell_row(g, b->relative, n + S * L + s, L, NULL, NULL);
                 b->row_start[gsn_point_blocks_subcell_row(b, k, L, s) + 1] =
                     (int)entries;
             }
@@ -128,7 +130,7 @@ static void fill_block(struct gsn_point_blocks *b,
         for (int s = 0; s < S; ++s) {
             size_t at =
                 (size_t)b->row_start[gsn_point_blocks_subcell_row(b, k, L, s)];
-            subcell_row(g, n + S * L + s, L, &particle[at],
+            subcell_row(g, b->relative, n + S * L + s, L, &particle[at],
                         &b->entry_gradient[3 * at]);
         }
 }
@@ -234,6 +236,7 @@ static int blocks_build(const struct gsn_quadrature *q, int block_points,
 {
     int n = q->main_point_count;
     b->subcells = n > 0 ? (q->point_count - n) / n : 0;
+    b->relative = q->stabilization == GSN_STABILIZATION_MSCNI;
     GSN_CALL(cut_blocks(b, q, block_points));
     size_t entries =
         (size_t)b->row_start[(size_t)n * (1 + (size_t)b->subcells)];

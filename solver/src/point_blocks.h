@@ -12,7 +12,7 @@
  * reduction then adds the slots of every particle in block order: the same
  * sums, bit for bit, on any number of threads.
  *
- * Stabilization rows are stored as B_s alone, not as the quadrature's
+ * MSCNI's stabilization rows are stored as B_s alone, not as the quadrature's
  * B_s - B_L (which holds the union of both supports, about twice the
  * entries): the solver forms (B_s - B_L) d as B_s d - B_L d with the B_L d
  * of the particle's nodal point, and folds the forces -B_L^T P_s of the
@@ -37,6 +37,8 @@ extern "C" {
 struct gsn_point_blocks {
     int block_count;
     int subcells;       /* stabilization points per main point, or 0 */
+    int relative;       /* 1: MSCNI, the rows act as B_s - B_L (below);
+                           0: NSNI, as they are */
     int *block_point;   /* block_count + 1: the main points of each block */
     int *block_slot;    /* block_count + 1: the slots of each block */
     int *slot_particle; /* slots: the particle of each */

@@ -138,7 +138,8 @@ static double norm1(int n, const double *a)
 size_t gsn_rk_work_size(const struct gsn_rk *rk, int count)
 {
     size_t m = (size_t)rk->basis_size;
-    return 8 * (size_t)count + 4 * m * m + 8 * m;
+    /* gsn_rk_hessian_point needs 16 per neighbour */
+    return 16 * (size_t)count + 4 * m * m + 8 * m;
 }
 
 int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
@@ -279,6 +280,131 @@ int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
                                   dot(m, b, dh) / s * phi[n] +
                                   hb[n] * dphi[3 * n + k];
         }
+    }
+    return 0;
+}
+
+/* d^2 w / dr^2 of bspline. */
+static inline double bspline_second(double r)
+{
+    if (r <= 0.5)
+        return -8.0 + 24.0 * r;
+    return r < 1.0 ? 8.0 * (1.0 - r) : 0.0;
+}
+
+/* Psi_I = phi_I h_I^T b with M b = e_0 (eq. (16)), h_I = h((X_I - X)/s)
+ * linear, so dh_I/dX_k = -e_(k+1)/s and d^2 h_I = 0. Differentiating
+ * M b = e_0 twice:
+ *   b_k  = -M^-1 M_k b,   b_jk = -M^-1 (M_jk b + M_j b_k + M_k b_j),
+ *   Psi_jk = phi_jk h.b + phi_j (h_k.b + h.b_k) + phi_k (h_j.b + h.b_j)
+ *            + phi (h_j.b_k + h_k.b_j + h.b_jk),
+ * with M_k and M_jk the derivatives of sum_I phi_I h_I h_I^T. */
+int gsn_rk_hessian_point(const struct gsn_rk *rk, const double x[3], int count,
+                         const int *index, double *work, double *hessian,
+                         double *condition)
+{
+    enum { M = 4 };
+    *condition = INFINITY;
+    if (rk->basis_size != M || count < M)
+        return 1;
+    double *z = work;                         /* 3 per neighbour */
+    double *phi = z + 3 * (size_t)count;      /* 1 */
+    double *dphi = phi + count;               /* 3 */
+    double *ddphi = dphi + 3 * (size_t)count; /* 9 */
+    double s = 0.0;
+    for (int n = 0; n < count; ++n)
+        s = fmax(s, rk->radius[index[n]]);
+
+    double moment[M * M] = {0}, dmoment[3][M * M] = {{0}};
+    double ddmoment[9][M * M] = {{0}};
+    for (int n = 0; n < count; ++n) {
+        const double *xi = rk->position + 3 * (size_t)index[n];
+        const double a = rk->radius[index[n]];
+        double w[3], dw[3], ddw[3];
+        for (int k = 0; k < 3; ++k) {
+            double d = xi[k] - x[k], r = fabs(d) / a;
+            z[3 * n + k] = d / s;
+            bspline(r, &w[k], &dw[k]);
+            dw[k] *= (d > 0.0 ? -1.0 : 1.0) / a;
+            ddw[k] = bspline_second(r) / (a * a);
+        }
+        phi[n] = w[0] * w[1] * w[2];
+        for (int j = 0; j < 3; ++j) {
+            dphi[3 * n + j] = dw[j] * w[(j + 1) % 3] * w[(j + 2) % 3];
+            for (int k = 0; k < 3; ++k)
+                ddphi[9 * n + 3 * j + k] =
+                    j == k ? ddw[j] * w[(j + 1) % 3] * w[(j + 2) % 3]
+                           : dw[j] * dw[k] * w[3 - j - k];
+        }
+        double h[M] = {1.0, z[3 * n], z[3 * n + 1], z[3 * n + 2]};
+        for (int i = 0; i < M; ++i)
+            for (int l = 0; l < M; ++l) {
+                double hh = h[i] * h[l];
+                moment[M * i + l] += phi[n] * hh;
+                for (int j = 0; j < 3; ++j) {
+                    /* h_j h^T + h h_j^T, h_j = -e_(j+1)/s */
+                    double hjh =
+                        -((i == j + 1) * h[l] + h[i] * (l == j + 1)) / s;
+                    dmoment[j][M * i + l] +=
+                        dphi[3 * n + j] * hh + phi[n] * hjh;
+                    for (int k = 0; k < 3; ++k) {
+                        double hkh =
+                            -((i == k + 1) * h[l] + h[i] * (l == k + 1)) / s;
+                        double hjhk = ((i == j + 1) * (l == k + 1) +
+                                       (i == k + 1) * (l == j + 1)) /
+                                      (s * s);
+                        ddmoment[3 * j + k][M * i + l] +=
+                            ddphi[9 * n + 3 * j + k] * hh +
+                            dphi[3 * n + j] * hkh + dphi[3 * n + k] * hjh +
+                            phi[n] * hjhk;
+                    }
+                }
+            }
+    }
+    double factor[M * M], inverse[M * M];
+    memcpy(factor, moment, sizeof factor);
+    if (cholesky(M, factor))
+        return 1;
+    for (int j = 0; j < M; ++j) {
+        double col[M] = {0};
+        col[j] = 1.0;
+        cholesky_solve(M, factor, col);
+        for (int i = 0; i < M; ++i)
+            inverse[i * M + j] = col[i];
+    }
+    *condition = norm1(M, moment) * norm1(M, inverse);
+    if (!(*condition <= GSN_RK_CONDITION_LIMIT))
+        return 1;
+    double b[M], bk[3][M], bjk[9][M];
+    for (int i = 0; i < M; ++i)
+        b[i] = inverse[i * M];
+    for (int k = 0; k < 3; ++k) {
+        for (int i = 0; i < M; ++i)
+            bk[k][i] = -dot(M, &dmoment[k][M * i], b);
+        cholesky_solve(M, factor, bk[k]);
+    }
+    for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k) {
+            double *r = bjk[3 * j + k];
+            for (int i = 0; i < M; ++i)
+                r[i] = -(dot(M, &ddmoment[3 * j + k][M * i], b) +
+                         dot(M, &dmoment[j][M * i], bk[k]) +
+                         dot(M, &dmoment[k][M * i], bk[j]));
+            cholesky_solve(M, factor, r);
+        }
+    for (int n = 0; n < count; ++n) {
+        double h[M] = {1.0, z[3 * n], z[3 * n + 1], z[3 * n + 2]};
+        double hb = dot(M, h, b);
+        for (int j = 0; j < 3; ++j)
+            for (int k = 0; k < 3; ++k) {
+                double hjb = -b[j + 1] / s, hkb = -b[k + 1] / s;
+                hessian[9 * n + 3 * j + k] =
+                    ddphi[9 * n + 3 * j + k] * hb +
+                    dphi[3 * n + j] * (hkb + dot(M, h, bk[k])) +
+                    dphi[3 * n + k] * (hjb + dot(M, h, bk[j])) +
+                    phi[n] * (-bk[k][j + 1] / s - bk[j][k + 1] / s +
+                              dot(M, h, bjk[3 * j + k]));
+            }
     }
     return 0;
 }

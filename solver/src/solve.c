@@ -1438,12 +1438,14 @@ static int run_setup(struct run *r)
     GSN_CALL(gsn_frame_allocate(&r->frame, r->model.particle_count));
     GSN_CALL(choose_time_step(r));
     if (!r->options->quiet)
-        printf("solver: %d particles, %d integration points, %s, %.1f MB of "
-               "shape functions, set up in %.2f s, %ld steps\n",
+        printf("solver: %d particles, %d integration points, %s%s%s, %.1f "
+               "MB of shape functions, set up in %.2f s, %ld steps\n",
                r->model.particle_count, r->reference->quadrature->point_count,
-               c->stabilization == GSN_STABILIZATION_MSCNI
-                   ? "scni + mscni stabilization"
-                   : gsn_integration_name(c->integration),
+               gsn_integration_name(c->integration),
+               c->stabilization != GSN_STABILIZATION_NONE ? " + " : "",
+               c->stabilization != GSN_STABILIZATION_NONE
+                   ? gsn_stabilization_name(c->stabilization)
+                   : "",
                gsn_quadrature_bytes(r->reference->quadrature) / 1e6,
                now_seconds() - t0, r->total_steps);
     if (r->reference->quadrature->held_fallback_count > 0)

@@ -40,6 +40,9 @@ static void check_lattice(int nx, int ny, int nz, int gauss)
     struct gsn_quadrature *mscni =
         build(&m, GSN_INTEGRATION_SCNI, GSN_STABILIZATION_MSCNI, NULL, 0);
     double r_mscni = fixture_patch_test(&m, mscni);
+    struct gsn_quadrature *nsni =
+        build(&m, GSN_INTEGRATION_SCNI, GSN_STABILIZATION_NSNI, NULL, 0);
+    double r_nsni = fixture_patch_test(&m, nsni);
     struct gsn_quadrature *dni =
         build(&m, GSN_INTEGRATION_DNI, GSN_STABILIZATION_NONE, NULL, 0);
     double r_dni = fixture_patch_test(&m, dni);
@@ -89,9 +92,9 @@ static void check_lattice(int nx, int ny, int nz, int gauss)
     gsn_quadrature_destroy(&gauss_tet);
     printf("lattice %dx%dx%d, %d facet point(s): eq. (23) %.2e, eq. (24) "
            "%.2e at %d interior particles; patch residual SCNI %.2e, "
-           "MSCNI %.2e, DNI %.2e, Gauss 2x2x2 %.2e\n",
+           "MSCNI %.2e, NSNI %.2e, DNI %.2e, Gauss 2x2x2 %.2e\n",
            nx, ny, nz, gauss * gauss, e23, e24, interior, r_scni, r_mscni,
-           r_dni, r_gauss);
+           r_nsni, r_dni, r_gauss);
     /* identities: round-off of a sum of ~30 terms of O(1) */
     TEST_TRUE(e23 <= 1e-12);
     TEST_TRUE(e24 <= 1e-12);
@@ -99,11 +102,13 @@ static void check_lattice(int nx, int ny, int nz, int gauss)
     /* issue 4: SCNI exact to 1e-10; DNI and Gauss fail by more than 1e-3 */
     TEST_TRUE(r_scni <= 1e-10);
     TEST_TRUE(r_mscni <= 1e-10);
+    TEST_TRUE(r_nsni <= 1e-10);
     TEST_TRUE(r_dni > 1e-3);
     TEST_TRUE(r_gauss > 1e-3);
 
     gsn_quadrature_destroy(&scni);
     gsn_quadrature_destroy(&mscni);
+    gsn_quadrature_destroy(&nsni);
     gsn_quadrature_destroy(&dni);
     gsn_quadrature_destroy(&gauss2);
     TEST_TRUE(scni == NULL);

@@ -184,16 +184,17 @@ static struct quotients rayleigh(const struct gsn_quadrature *q,
 int main(void)
 {
     test_begin();
-    enum { METHODS = 5 };
-    const char *names[METHODS] = {"SCNI", "SCNI+MSCNI 6", "DNI", "Gauss 2x2x2",
-                                  "SCNI+MSCNI 2"};
+    enum { METHODS = 6 };
+    const char *names[METHODS] = {"SCNI",        "SCNI+MSCNI 6", "DNI",
+                                  "Gauss 2x2x2", "SCNI+MSCNI 2", "SCNI+NSNI"};
     const enum gsn_integration method[METHODS] = {
-        GSN_INTEGRATION_SCNI, GSN_INTEGRATION_SCNI, GSN_INTEGRATION_DNI,
-        GSN_INTEGRATION_GAUSS, GSN_INTEGRATION_SCNI};
+        GSN_INTEGRATION_SCNI,  GSN_INTEGRATION_SCNI, GSN_INTEGRATION_DNI,
+        GSN_INTEGRATION_GAUSS, GSN_INTEGRATION_SCNI, GSN_INTEGRATION_SCNI};
     const enum gsn_stabilization stab[METHODS] = {
-        GSN_STABILIZATION_NONE, GSN_STABILIZATION_MSCNI, GSN_STABILIZATION_NONE,
-        GSN_STABILIZATION_NONE, GSN_STABILIZATION_MSCNI};
-    const int subcells[METHODS] = {6, 6, 6, 6, 2};
+        GSN_STABILIZATION_NONE,  GSN_STABILIZATION_MSCNI,
+        GSN_STABILIZATION_NONE,  GSN_STABILIZATION_NONE,
+        GSN_STABILIZATION_MSCNI, GSN_STABILIZATION_NSNI};
+    const int subcells[METHODS] = {6, 6, 6, 6, 2, 6};
 
     /* 1. zero-energy modes of a free 4^3 block */
     {
@@ -234,8 +235,8 @@ int main(void)
         }
         struct gsn_model m;
         TEST_INT(gsn_pre_domains_box(x, 64, lo, hi, 1, &m), GSN_OK);
-        for (int s = 0; s < 3; ++s) {
-            int i = s == 2 ? 4 : s; /* SCNI, MSCNI 6, MSCNI 2 */
+        for (int s = 0; s < 4; ++s) {
+            int i = s >= 2 ? s + 2 : s; /* SCNI, MSCNI 6, MSCNI 2, NSNI */
             struct gsn_quadrature *q =
                 build(&m, method[i], stab[i], subcells[i], NULL, 0);
             double next;
@@ -274,6 +275,8 @@ int main(void)
         /* MSCNI lifts every checkerboard above the smooth mode */
         TEST_TRUE(r[1].lo > r[1].smooth);
         TEST_TRUE(r[4].lo > r[4].smooth);
+        /* and so does NSNI, with three points instead of six */
+        TEST_TRUE(r[5].lo > r[5].smooth);
         free(bg);
         gsn_model_free(&m);
     }

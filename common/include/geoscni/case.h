@@ -51,7 +51,8 @@ enum gsn_integration {
 
 enum gsn_stabilization {
     GSN_STABILIZATION_NONE = 0,
-    GSN_STABILIZATION_MSCNI /* sub-cell smoothing, Puso et al. 2008 */
+    GSN_STABILIZATION_MSCNI, /* sub-cell smoothing, Puso et al. 2008 */
+    GSN_STABILIZATION_NSNI   /* strain gradients, Hillman & Chen 2016 */
 };
 
 /* Boundary entry: keys are gmsh physical surface names. Components are
@@ -196,6 +197,7 @@ int gsn_case_find_boundary(const struct gsn_case *c, const char *name);
 const char *gsn_closest_word(const char *word, const char *const words[]);
 
 const char *gsn_integration_name(enum gsn_integration integration);
+const char *gsn_stabilization_name(enum gsn_stabilization stabilization);
 
 #ifdef __cplusplus
 }

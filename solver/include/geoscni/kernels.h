@@ -119,6 +119,15 @@ int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
                        const int *index, double *work, double *psi,
                        double *gradient, double *condition);
 
+/* Second derivatives d^2 Psi_I / dX_j dX_k (9 per neighbour, row-major)
+ * of the linear basis at x, for the count neighbours in index (NSNI's
+ * strain gradients, Hillman & Chen 2016). Returns 0, or 1 if the basis is
+ * not linear or M(x) is singular or ill-conditioned (*condition as in
+ * gsn_rk_shape_point). */
+int gsn_rk_hessian_point(const struct gsn_rk *rk, const double x[3], int count,
+                         const int *index, double *work, double *hessian,
+                         double *condition);
+
 /* Shape values (and gradients if want_gradient) at point_count points
  * (n x 3, m), one row per point. OpenMP over points; the rows do not depend
  * on the thread count. A point with an ill-conditioned moment matrix is a
