@@ -22,9 +22,13 @@
 
 /* The methods in the order of the legend, with their labels; a method's
  * colour is its place here, whether or not the others are in the CSV. */
-static const char *const METHODS[][2] = {
-    {"scni", "SCNI"}, {"mscni", "SCNI + MSCNI"}, {"nsni", "SCNI + NSNI"},
-    {"dni", "DNI"},   {"gauss2", "Gauss 2x2x2"}, {"gauss3", "Gauss 3x3x3"}};
+static const char *const METHODS[][2] = {{"scni", "SCNI"},
+                                         {"mscni", "SCNI + MSCNI"},
+                                         {"nsni", "SCNI + NSNI"},
+                                         {"dni", "DNI"},
+                                         {"gauss2", "Gauss 2x2x2"},
+                                         {"gauss3", "Gauss 3x3x3"},
+                                         {"nsni0.1", "SCNI + NSNI 0.1"}};
 enum { METHOD_COUNT = sizeof METHODS / sizeof METHODS[0] };
 enum { LINE_SIZE = 4096, MAX_COLUMNS = 64, MAX_POINTS = 256 };
 

@@ -8,7 +8,8 @@
 # before 12.5% of B are left off the chart and kept in the runs' CSV.
 # Usage: bench/bearing_chart.sh [BUILD_DIR] [OUT_DIR] [SPACINGS] [METHODS]
 #        (default build, docs/img, "0.4 0.286 0.2 0.133 0.1",
-#        "scni mscni nsni dni gauss2 gauss3"; Gauss at GAUSS_SPACINGS, default
+#        "scni mscni nsni nsni0.1 dni gauss2 gauss3": nsni0.1 is NSNI with
+#        coefficient 0.1; Gauss at GAUSS_SPACINGS, default
 #        "0.4 0.286 0.2"); runs in $RUNS (default
 #        /tmp/geoscni_bearing_chart), one at a time on $THREADS threads
 #        (default 1).
@@ -18,7 +19,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-build}
 out=${2:-$root/docs/img}
 spacings=${3:-0.4 0.286 0.2 0.133 0.1}
-methods=${4:-scni mscni nsni dni gauss2 gauss3}
+methods=${4:-scni mscni nsni nsni0.1 dni gauss2 gauss3}
 runs=${RUNS:-/tmp/geoscni_bearing_chart}
 plot=$root/$build/bin/accuracy_plot
 [ -x "$plot" ] || { echo "no $plot: build first" >&2; exit 2; }

@@ -303,16 +303,17 @@ static void test_rotation_with_updates(void)
 }
 
 /* A point that fails (its F turned inside out) carries no stress and does
- * no work from then on, nor do its MSCNI sub-cells: a step with no
+ * no work from then on, nor do its MSCNI sub-cells or NSNI points: a step
+ * with no
  * increment after the failure adds exactly no internal energy (the
  * sub-cells' energy of the failing step was added again at every step
  * before the fix: the paper's Slope I gained 4e4 J/s after one failure). */
-static void test_failed_point_energy(void)
+static void test_failed_point_energy(enum gsn_stabilization stabilization)
 {
     struct block b;
     memset(&b, 0, sizeof b);
     TEST_INT(gsn_case_load("cases/block_paper.yaml", &b.c), GSN_OK);
-    b.c.stabilization = GSN_STABILIZATION_MSCNI;
+    b.c.stabilization = stabilization;
     TEST_INT(fixture_box(COUNT, LO, HI, JITTER, 1, &b.model), GSN_OK);
     TEST_INT(
         gsn_material_model_create(gsn_material_name_for_case(&b.c.material),
@@ -360,8 +361,9 @@ static void test_failed_point_energy(void)
     double energy = 0.0;
     for (int p = 0; p < e->point_count; ++p)
         energy += fabs(e->point_energy[p]);
-    printf("%d failed points; energy of a step without increment: %g J\n",
-           e->dead_count, energy);
+    printf("%s: %d failed points; energy of a step without increment: %g "
+           "J\n",
+           gsn_stabilization_name(stabilization), e->dead_count, energy);
     TEST_TRUE(energy == 0.0);
     block_destroy(&b);
 }
@@ -508,6 +510,7 @@ int main(void)
     test_support_repair();
     test_uniform_update();
     test_rotation_with_updates();
-    test_failed_point_energy();
+    test_failed_point_energy(GSN_STABILIZATION_MSCNI);
+    test_failed_point_energy(GSN_STABILIZATION_NSNI);
     return test_end("test_reference_update");
 }
