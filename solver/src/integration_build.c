@@ -803,11 +803,18 @@ static int nodal_points(const struct gsn_model *m, struct gsn_quadrature *q)
 static int nsni_row(void *context, int row, struct kernel_thread *t)
 {
     const struct facet_context *c = context;
-    int L = row / 3, k = row % 3, count;
-    int rc = kernel_evaluate(c->rk, c->m->position + 3 * (size_t)L, 2, t,
-                             &count, "NSNI point", L);
-    if (rc != GSN_OK)
-        return rc;
+    int L = row / 3, k = row % 3;
+    if (t->hessian_row < 0 || t->hessian_row / 3 != L) {
+        /* the three rows of L share one evaluation (rows come in order
+         * within a thread's chunk) */
+        int rc = kernel_evaluate(c->rk, c->m->position + 3 * (size_t)L, 2, t,
+                                 &t->hessian_count, "NSNI point", L);
+        t->hessian_row = -1;
+        if (rc != GSN_OK)
+            return rc;
+        t->hessian_row = row;
+    }
+    int count = t->hessian_count;
     for (int n = 0; n < count; ++n)
         if (kernel_row_push(t, t->index[n], 0.0, t->hessian + 9 * n + 3 * k)) {
             snprintf(t->message, sizeof t->message, "out of memory at row %d",

@@ -95,6 +95,7 @@ static int thread_allocate(struct kernel_thread *t, const struct gsn_rk *rk)
     t->psi = malloc(cap * sizeof *t->psi);
     t->gradient = malloc(3 * cap * sizeof *t->gradient);
     t->hessian = malloc(9 * cap * sizeof *t->hessian);
+    t->hessian_row = -1;
     t->work = malloc(gsn_rk_work_size(rk, (int)cap) * sizeof *t->work);
     t->dense = calloc(3 * n, sizeof *t->dense);
     t->mark = calloc(n, sizeof *t->mark);

@@ -10,14 +10,16 @@
 
 /* Per-thread scratch handed to the row function. */
 struct kernel_thread {
-    int *index;       /* GSN_RK_MAX_NEIGHBOURS */
-    double *psi;      /* GSN_RK_MAX_NEIGHBOURS */
-    double *gradient; /* 3 GSN_RK_MAX_NEIGHBOURS */
-    double *hessian;  /* 9 GSN_RK_MAX_NEIGHBOURS */
-    double *work;     /* gsn_rk_work_size for GSN_RK_MAX_NEIGHBOURS */
-    double *dense;    /* 3 per particle, zero between rows */
-    int *mark;        /* 1 per particle, 0 between rows */
-    int *touched;     /* particle_count */
+    int *index;        /* GSN_RK_MAX_NEIGHBOURS */
+    double *psi;       /* GSN_RK_MAX_NEIGHBOURS */
+    double *gradient;  /* 3 GSN_RK_MAX_NEIGHBOURS */
+    double *hessian;   /* 9 GSN_RK_MAX_NEIGHBOURS */
+    int hessian_count; /* neighbours in index/hessian, and the row that */
+    int hessian_row;   /* evaluated them (-1 none): for reuse by the next */
+    double *work;      /* gsn_rk_work_size for GSN_RK_MAX_NEIGHBOURS */
+    double *dense;     /* 3 per particle, zero between rows */
+    int *mark;         /* 1 per particle, 0 between rows */
+    int *touched;      /* particle_count */
     /* the row being written */
     long count, capacity;
     int *out_index;

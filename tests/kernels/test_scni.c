@@ -117,17 +117,17 @@ static void check_lattice(int nx, int ny, int nz, int gauss)
 }
 
 /* The rows of the integration do not depend on the thread count. */
-static void check_threads(void)
+static void check_threads(enum gsn_stabilization stabilization)
 {
     const int size[3] = {6, 5, 4};
     struct gsn_model m;
     TEST_INT(fixture_lattice(size, 1.0, 2, &m), GSN_OK);
     omp_set_num_threads(1);
     struct gsn_quadrature *a =
-        build(&m, GSN_INTEGRATION_SCNI, GSN_STABILIZATION_MSCNI, NULL, 0);
+        build(&m, GSN_INTEGRATION_SCNI, stabilization, NULL, 0);
     omp_set_num_threads(2);
     struct gsn_quadrature *b =
-        build(&m, GSN_INTEGRATION_SCNI, GSN_STABILIZATION_MSCNI, NULL, 0);
+        build(&m, GSN_INTEGRATION_SCNI, stabilization, NULL, 0);
     int nnz = a->gradient.offset[a->point_count];
     TEST_INT(b->gradient.offset[b->point_count], nnz);
     TEST_TRUE(!memcmp(a->gradient.index, b->gradient.index,
@@ -202,7 +202,8 @@ int main(void)
     check_lattice(5, 5, 5, 1);
     check_lattice(5, 5, 5, 2);
     check_lattice(7, 6, 5, 1);
-    check_threads();
+    check_threads(GSN_STABILIZATION_MSCNI);
+    check_threads(GSN_STABILIZATION_NSNI);
     check_threads_other();
     check_bad_options();
     return test_end("test_scni");
