@@ -1183,6 +1183,10 @@ static int open_outputs(struct run *r)
     int rc = check_restart(r, model_hash, &was_complete);
     gsn_h5_close(&r->results);
     GSN_CALL(rc);
+    /* the checkpoint's state; with reference updates a new loop (the one
+     * taken above is gone): its step decides which frames and history
+     * rows are kept */
+    e = r->reference->loop;
     if (!part)
         GSN_CHECK(rename(r->results_path, r->results_temporary) == 0,
                   GSN_ERR_IO, "cannot rename %s for the restart",

@@ -119,4 +119,56 @@ OMP_NUM_THREADS=2 "$geoscni" solve "$out/sinking.yaml" -o "$out/resumed" -q --re
     2>>"$out/resumed.log" || fail "the restart: $(cat "$out/resumed.log")"
 [ "$(tail -1 "$out/sinking/history.csv")" = "$(tail -1 "$out/resumed/history.csv")" ] ||
     fail "the restarted sinking footing ends elsewhere than the uninterrupted one"
+# every row of before the restart kept (a restart after reference updates
+# once dropped them all, and the frames with them: the loop it read the
+# checkpoint's step from had been replaced)
+# (the resumed one has one row more: the first half's last, at its end)
+/usr/bin/python3 - "$out/sinking/history.csv" "$out/resumed/history.csv" <<'PY' ||
+import sys
+a, b = (open(p).read().splitlines() for p in sys.argv[1:])
+missing = [row for row in a if row not in set(b)]
+print(f"history rows: uninterrupted {len(a)}, restarted {len(b)}, missing {len(missing)}")
+sys.exit(0 if not missing and len(b) - len(a) <= 1 else 1)
+PY
+    fail "the restarted run lost or changed history rows of the uninterrupted one"
+# and stopped by a signal after its first updates (the case that lost
+# every row and frame before the checkpoint), continued with --restart
+mkdir -p "$out/signalled" && cp "$out/sinking/model.h5" "$out/signalled/"
+OMP_NUM_THREADS=1 "$geoscni" solve "$out/sinking.yaml" -o "$out/signalled" -q \
+    2>"$out/signalled.log" &
+solver=$!
+i=0
+until awk -F, 'NR == 1 { for (k = 1; k <= NF; ++k) if ($k == "reference_updates") c = k; next }
+               c && $c >= 2 { found = 1 } END { exit !found }' \
+    "$out/signalled/history.csv" 2>/dev/null || [ $i -ge 600 ]; do
+    sleep 0.1
+    i=$((i + 1))
+done
+kill -TERM $solver
+wait $solver
+[ $? -eq 130 ] || fail "the signalled run did not stop on the signal: $(cat "$out/signalled.log")"
+OMP_NUM_THREADS=2 "$geoscni" solve "$out/sinking.yaml" -o "$out/signalled" -q --restart \
+    2>>"$out/signalled.log" || fail "the restart after the signal: $(cat "$out/signalled.log")"
+/usr/bin/python3 - "$out/sinking/history.csv" "$out/signalled/history.csv" <<'PY' ||
+import sys
+a, b = (open(p).read().splitlines() for p in sys.argv[1:])
+missing = [row for row in a if row not in set(b)]
+print(f"history rows: uninterrupted {len(a)}, signalled and restarted {len(b)}, missing {len(missing)}")
+sys.exit(0 if not missing and len(b) - len(a) <= 1 else 1)
+PY
+    fail "the run stopped by a signal after updates lost history rows on --restart"
+/usr/bin/python3 - "$out/sinking/results.h5" "$out/signalled/results.h5" <<'PY' ||
+import sys, h5py
+a, b = (sorted(h5py.File(p, "r")["frames"].keys()) for p in sys.argv[1:])
+print(f"frames: uninterrupted {len(a)}, signalled and restarted {len(b)}")
+sys.exit(0 if len(b) >= len(a) else 1)
+PY
+    fail "the run stopped by a signal after updates lost frames on --restart"
+/usr/bin/python3 - "$out/sinking/results.h5" "$out/resumed/results.h5" <<'PY' ||
+import sys, h5py
+a, b = (sorted(h5py.File(p, "r")["frames"].keys()) for p in sys.argv[1:])
+print(f"frames: uninterrupted {len(a)}, restarted {len(b)}")
+sys.exit(0 if a == b else 1)
+PY
+    fail "the restarted run's frames differ from the uninterrupted one's"
 finish
