@@ -135,6 +135,27 @@ static double norm1(int n, const double *a)
     return best;
 }
 
+/* Factors the moment matrix (m x m) into factor (Cholesky) and its inverse
+ * (column by column through column, m doubles of scratch); *condition gets
+ * the 1-norm condition number. Returns 1 if M is not positive or its
+ * condition number exceeds GSN_RK_CONDITION_LIMIT. */
+static int factor_checked(int m, const double *moment, double *factor,
+                          double *inverse, double *column, double *condition)
+{
+    memcpy(factor, moment, (size_t)m * (size_t)m * sizeof *factor);
+    if (cholesky(m, factor))
+        return 1;
+    for (int j = 0; j < m; ++j) {
+        memset(column, 0, (size_t)m * sizeof *column);
+        column[j] = 1.0;
+        cholesky_solve(m, factor, column);
+        for (int i = 0; i < m; ++i)
+            inverse[i * m + j] = column[i];
+    }
+    *condition = norm1(m, moment) * norm1(m, inverse);
+    return !(*condition <= GSN_RK_CONDITION_LIMIT);
+}
+
 size_t gsn_rk_work_size(const struct gsn_rk *rk, int count)
 {
     size_t m = (size_t)rk->basis_size;
@@ -195,19 +216,7 @@ int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
             moment[i * m + j] = moment[j * m + i];
 
     /* b = M^{-1} h(0), eq. (14); the condition number from the inverse. */
-    memcpy(factor, moment, mm * sizeof *factor);
-    if (cholesky(m, factor))
-        return 1;
-    for (int j = 0; j < m; ++j) {
-        double *col = h;
-        memset(col, 0, (size_t)m * sizeof *col);
-        col[j] = 1.0;
-        cholesky_solve(m, factor, col);
-        for (int i = 0; i < m; ++i)
-            inverse[i * m + j] = col[i];
-    }
-    *condition = norm1(m, moment) * norm1(m, inverse);
-    if (!(*condition <= GSN_RK_CONDITION_LIMIT))
+    if (factor_checked(m, moment, factor, inverse, h, condition))
         return 1;
     for (int i = 0; i < m; ++i)
         b[i] = inverse[i * m + 0];
@@ -361,19 +370,8 @@ int gsn_rk_hessian_point(const struct gsn_rk *rk, const double x[3], int count,
                 }
             }
     }
-    double factor[M * M], inverse[M * M];
-    memcpy(factor, moment, sizeof factor);
-    if (cholesky(M, factor))
-        return 1;
-    for (int j = 0; j < M; ++j) {
-        double col[M] = {0};
-        col[j] = 1.0;
-        cholesky_solve(M, factor, col);
-        for (int i = 0; i < M; ++i)
-            inverse[i * M + j] = col[i];
-    }
-    *condition = norm1(M, moment) * norm1(M, inverse);
-    if (!(*condition <= GSN_RK_CONDITION_LIMIT))
+    double factor[M * M], inverse[M * M], column[M];
+    if (factor_checked(M, moment, factor, inverse, column, condition))
         return 1;
     double b[M], bk[3][M], bjk[9][M];
     for (int i = 0; i < M; ++i)
