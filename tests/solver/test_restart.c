@@ -145,6 +145,20 @@ static void check_restart_frames(const char *whole, const char *parts,
     gsn_h5_close(&file[1]);
 }
 
+/* The step of a run's last frame. */
+static int last_frame_step(const char *folder)
+{
+    int count = 0, n = 0;
+    hid_t file = results_open(folder, 0, &count, &n);
+    struct gsn_frame frame;
+    TEST_INT(gsn_frame_allocate(&frame, n), GSN_OK);
+    TEST_INT(gsn_results_frame_read(file, count - 1, &frame), GSN_OK);
+    int step = frame.step;
+    gsn_frame_free(&frame);
+    gsn_h5_close(&file);
+    return step;
+}
+
 /* Appends to a run's results a copy of its last frame at a later step, as a
  * run killed after a frame but before its checkpoint leaves; returns the
  * step of the last frame before it. */
@@ -231,10 +245,15 @@ int main(void)
     static char single_updates[] = "/tmp/geoscni-test-single-updates-XXXXXX";
     run(&c, c.time_end, 0, whole_updates, 2);
     run(&c, 0.45 * c.time_end, 0, parts_updates, 2);
+    int cut_updates = last_frame_step(parts_updates);
     run(&c, c.time_end, 1, parts_updates, 2);
     run(&c, c.time_end, 0, single_updates, 1);
     TEST_TRUE(updates_done(whole_updates) >= 6);
     TEST_TRUE(same_last_frame(whole_updates, parts_updates));
+    /* and every frame of before the checkpoint (a restart after updates
+     * once read the checkpoint's step from the replaced loop and dropped
+     * them) */
+    check_restart_frames(whole_updates, parts_updates, cut_updates);
     TEST_TRUE(same_last_frame(whole_updates, single_updates));
 
     char command[1000];

@@ -123,13 +123,28 @@ OMP_NUM_THREADS=2 "$geoscni" solve "$out/sinking.yaml" -o "$out/resumed" -q --re
 # once dropped them all, and the frames with them: the loop it read the
 # checkpoint's step from had been replaced)
 # (the resumed one has one row more: the first half's last, at its end)
-/usr/bin/python3 - "$out/sinking/history.csv" "$out/resumed/history.csv" <<'PY' ||
+# rows_kept DIR: every history row of the uninterrupted run is in DIR's,
+# which has at most one more
+rows_kept() {
+    /usr/bin/python3 - "$out/sinking/history.csv" "$out/$1/history.csv" <<'PY'
 import sys
 a, b = (open(p).read().splitlines() for p in sys.argv[1:])
 missing = [row for row in a if row not in set(b)]
-print(f"history rows: uninterrupted {len(a)}, restarted {len(b)}, missing {len(missing)}")
+print(f"history rows: uninterrupted {len(a)}, {sys.argv[2]}: {len(b)}, missing {len(missing)}")
 sys.exit(0 if not missing and len(b) - len(a) <= 1 else 1)
 PY
+}
+# frames_kept DIR same|all: DIR has the uninterrupted run's frames, the
+# same ones or at least as many
+frames_kept() {
+    /usr/bin/python3 - "$out/sinking/results.h5" "$out/$1/results.h5" "$2" <<'PY'
+import sys, h5py
+a, b = (sorted(h5py.File(p, "r")["frames"].keys()) for p in sys.argv[1:3])
+print(f"frames: uninterrupted {len(a)}, {sys.argv[2]}: {len(b)}")
+sys.exit(0 if (a == b if sys.argv[3] == "same" else len(b) >= len(a)) else 1)
+PY
+}
+rows_kept resumed ||
     fail "the restarted run lost or changed history rows of the uninterrupted one"
 # and stopped by a signal after its first updates (the case that lost
 # every row and frame before the checkpoint), continued with --restart
@@ -149,26 +164,10 @@ wait $solver
 [ $? -eq 130 ] || fail "the signalled run did not stop on the signal: $(cat "$out/signalled.log")"
 OMP_NUM_THREADS=2 "$geoscni" solve "$out/sinking.yaml" -o "$out/signalled" -q --restart \
     2>>"$out/signalled.log" || fail "the restart after the signal: $(cat "$out/signalled.log")"
-/usr/bin/python3 - "$out/sinking/history.csv" "$out/signalled/history.csv" <<'PY' ||
-import sys
-a, b = (open(p).read().splitlines() for p in sys.argv[1:])
-missing = [row for row in a if row not in set(b)]
-print(f"history rows: uninterrupted {len(a)}, signalled and restarted {len(b)}, missing {len(missing)}")
-sys.exit(0 if not missing and len(b) - len(a) <= 1 else 1)
-PY
+rows_kept signalled ||
     fail "the run stopped by a signal after updates lost history rows on --restart"
-/usr/bin/python3 - "$out/sinking/results.h5" "$out/signalled/results.h5" <<'PY' ||
-import sys, h5py
-a, b = (sorted(h5py.File(p, "r")["frames"].keys()) for p in sys.argv[1:])
-print(f"frames: uninterrupted {len(a)}, signalled and restarted {len(b)}")
-sys.exit(0 if len(b) >= len(a) else 1)
-PY
+frames_kept signalled all ||
     fail "the run stopped by a signal after updates lost frames on --restart"
-/usr/bin/python3 - "$out/sinking/results.h5" "$out/resumed/results.h5" <<'PY' ||
-import sys, h5py
-a, b = (sorted(h5py.File(p, "r")["frames"].keys()) for p in sys.argv[1:])
-print(f"frames: uninterrupted {len(a)}, restarted {len(b)}")
-sys.exit(0 if a == b else 1)
-PY
+frames_kept resumed same ||
     fail "the restarted run's frames differ from the uninterrupted one's"
 finish
