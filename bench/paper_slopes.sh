@@ -56,4 +56,20 @@ for name in $cases; do
         -$f > m { m = -$f; s = -$u } END { printf "%.2f MN at %.3f m", m / 1e6, s }' "$out/$name/history.csv")
     echo "  $particles particles, $steps steps; pre $pre s, solve $solve s, post $post s; peak footing load $peak"
     grep -E "quasi-static|warning" "$out/$name/solve.log" | sed 's/^/  /' || true
+    # where it ended: failed particles, the energy balance over the work,
+    # and the particles thrown up (u_z > 0.5 m at the last frame: the lip
+    # of docs/paper_slopes.md)
+    /usr/bin/python3 - "$out/$name" <<'PY' || true
+import csv, sys, h5py
+out = sys.argv[1]
+rows = list(csv.DictReader(open(f"{out}/history.csv")))
+col = lambda k: [float(r[k]) for r in rows]
+balance = [k + w + d - x - u for k, w, d, x, u in zip(col("kinetic_energy_J"), col("internal_energy_J"),
+           col("damping_work_J"), col("external_work_J"), col("update_energy_J"))]
+frames = h5py.File(f"{out}/results.h5", "r")["frames"]
+uz = frames[sorted(frames.keys())[-1]]["displacement"][:, 2]
+print(f"  at the end (t = {rows[-1]['time_s']} s): {rows[-1]['failed_particles']} failed particles; "
+      f"|energy balance| <= {max(map(abs, balance)) / max(col('external_work_J')):.1e} of the work; "
+      f"{int((uz > 0.5).sum())} particles up more than 0.5 m (highest {uz.max():.2f} m)")
+PY
 done
