@@ -153,6 +153,11 @@ enum gsn_reference_reason gsn_reference_due(const struct gsn_reference *r)
     const struct gsn_explicit *e = r->loop;
     if (!c->reference_update || e->step - r->step < c->reference_min_steps)
         return GSN_REFERENCE_NOT_DUE;
+    if (r->deferred_run > 0 &&
+        e->step - r->attempt_step <
+            (long)c->reference_min_steps
+                << (r->deferred_run < 16 ? r->deferred_run : 16))
+        return GSN_REFERENCE_NOT_DUE;
     if (e->distortion_strain > c->reference_strain)
         return GSN_REFERENCE_STRAIN;
     if (e->distortion_jacobian_min < c->reference_volume[0] ||
@@ -201,9 +206,6 @@ static int rebuild(struct gsn_reference *r, const double *x,
     double t0 = omp_get_wtime();
     struct gsn_cells_options options = {r->c->facet_points, r->threads, 0};
     int rc = GSN_OK;
-    GSN_CHECK_GOTO(r->body.tetrahedron_count > 0, rc, GSN_ERR_INPUT, fail,
-                   "the model has no tetrahedra: the body cannot be followed "
-                   "(reference_update: off)");
     if (given)
         GSN_CALL_GOTO(gsn_body_copy(given, &body), rc, fail);
     else {
@@ -292,6 +294,10 @@ int gsn_reference_update(struct gsn_reference *r,
     report.volume[0] = old->distortion_jacobian_min;
     report.volume[1] = old->distortion_jacobian_max;
     report.kinetic_before = old->kinetic_energy;
+    GSN_CHECK(r->body.tetrahedron_count > 0, GSN_ERR_INPUT,
+              "the model has no tetrahedra: the body cannot be followed "
+              "(reference_update: off)");
+    double t0 = omp_get_wtime();
     double mass0, momentum0[3], scale0;
     mass_momentum(old, &mass0, momentum0, &scale0);
     /* the current positions x = X_ref + u(X_ref) */
@@ -304,20 +310,26 @@ int gsn_reference_update(struct gsn_reference *r,
     double time = old->time;
     int rc = rebuild(r, x, NULL, time, 1, &report);
     free(x);
+    if (rc == GSN_ERR_MEMORY)
+        return rc;
     if (rc != GSN_OK) {
         /* a failure of the discretization is the computation's, whatever
-         * its library called it */
-        char cause[512];
-        snprintf(cause, sizeof cause, "%s", gsn_error_message());
-        return gsn_error_raise(
-            rc == GSN_ERR_MEMORY ? rc : GSN_ERR_NUMERICAL, __FILE__, __LINE__,
-            __func__,
-            "step %ld, t = %.6g s: the reference-configuration update failed "
-            "(%s); the particles have moved too far for the body to be "
-            "followed: the run is unstable (reduce time.step) or has broken "
-            "up",
-            step, time, cause);
+         * its library called it: the present reference, which the last
+         * step passed every check on, goes on, and the update is tried
+         * again later (the energy check still watches the run) */
+        snprintf(report.cause, sizeof report.cause, "%s", gsn_error_message());
+        gsn_error_clear();
+        report.deferred = 1;
+        r->deferred_count++;
+        r->deferred_run++;
+        r->attempt_step = step;
+        r->seconds += report.seconds = omp_get_wtime() - t0;
+        r->last = report;
+        if (out)
+            *out = report;
+        return GSN_OK;
     }
+    r->deferred_run = 0;
     /* The new reference's cells may be smaller for their particles' masses
      * than the first (a compressed zone, a remade body) and its stable step
      * shorter: the step follows it. */

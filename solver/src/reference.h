@@ -65,6 +65,9 @@ struct gsn_reference_report {
     double body_quality; /* smallest tetrahedron volume / mean before */
     int support_repairs; /* points whose supports were repaired */
     int held_fallbacks;  /* points of held facets that keep Psi_I */
+    int deferred;        /* 1: the new discretization failed its checks;
+                            the run goes on with the present one */
+    char cause[512];     /* why, when deferred */
 };
 
 struct gsn_reference {
@@ -85,6 +88,13 @@ struct gsn_reference {
                                     once on `original`, kept by updates */
     struct gsn_explicit *loop;
     int update_count;
+    /* Updates whose new discretization failed (a negative lumped mass, a
+     * point no kernel covers, cells that do not fit): the present one is
+     * kept and the next attempt waits min_steps times 2^deferred_run steps
+     * from attempt_step, so that a run that cannot be followed any further
+     * does not spend itself on attempts. */
+    int deferred_count, deferred_run;
+    long attempt_step;
     double time;        /* s, of the present reference */
     long step;          /* of the present reference */
     double energy_jump; /* J, the kinetic energy the updates added */
@@ -111,8 +121,10 @@ void gsn_reference_destroy(struct gsn_reference **r);
 enum gsn_reference_reason gsn_reference_due(const struct gsn_reference *r);
 
 /* Takes the current configuration as the reference (see above); report
- * (may be NULL) gets what it did. On failure the old discretization is
- * kept as it was. */
+ * (may be NULL) gets what it did. Where the new discretization fails its
+ * checks the update is deferred (report->deferred, with the cause): the
+ * old discretization is kept as it was and GSN_OK returned; other
+ * failures (memory, a body that cannot be followed) are errors. */
 int gsn_reference_update(struct gsn_reference *r,
                          struct gsn_reference_report *report);
 

@@ -399,6 +399,12 @@ static int write_checkpoint_reference(struct run *r, hid_t group)
                                       ref->time));
     GSN_CALL(gsn_h5_attr_write_double(group, GSN_CHECKPOINT_ATTR_UPDATE_ENERGY,
                                       ref->energy_jump));
+    GSN_CALL(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_DEFERRED,
+                                   ref->deferred_count));
+    GSN_CALL(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_DEFERRED_RUN,
+                                   ref->deferred_run));
+    GSN_CALL(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_ATTEMPT_STEP,
+                                   (int)ref->attempt_step));
     return GSN_OK;
 }
 
@@ -413,6 +419,16 @@ static int read_checkpoint_reference(struct run *r, hid_t group)
     /* (checkpoints without updates lack nothing that matters) */
     if (H5Aexists(group, GSN_CHECKPOINT_ATTR_UPDATES) <= 0)
         return GSN_OK;
+    if (H5Aexists(group, GSN_CHECKPOINT_ATTR_DEFERRED) > 0) {
+        int attempt = 0;
+        GSN_CALL(gsn_h5_attr_read_int(group, GSN_CHECKPOINT_ATTR_DEFERRED,
+                                      &ref->deferred_count));
+        GSN_CALL(gsn_h5_attr_read_int(group, GSN_CHECKPOINT_ATTR_DEFERRED_RUN,
+                                      &ref->deferred_run));
+        GSN_CALL(gsn_h5_attr_read_int(group, GSN_CHECKPOINT_ATTR_ATTEMPT_STEP,
+                                      &attempt));
+        ref->attempt_step = attempt;
+    }
     GSN_CALL(
         gsn_h5_attr_read_int(group, GSN_CHECKPOINT_ATTR_UPDATES, &updates));
     if (updates == 0)
@@ -866,6 +882,10 @@ static void print_updates(const struct run *r, double seconds)
                ref->update_count, ref->remesh_count, ref->seconds,
                seconds > 0.0 ? 100.0 * ref->seconds / seconds : 0.0,
                ref->energy_jump);
+    if (ref->deferred_count > 0)
+        printf("reference updates deferred: %d (the new discretization "
+               "failed its checks; the last: %s)\n",
+               ref->deferred_count, ref->last.deferred ? ref->last.cause : "");
     if (ref->loop->dead_count > 0)
         printf("failed particles: %d (turned inside out; they carry no "
                "stress and keep their mass)\n",
@@ -881,6 +901,22 @@ static int update_reference(struct run *r)
         return GSN_OK;
     struct gsn_reference_report report;
     GSN_CALL(gsn_reference_update(r->reference, &report));
+    if (report.deferred) {
+        const struct gsn_reference *ref = r->reference;
+        const struct gsn_explicit *e = ref->loop;
+        if (!r->options->quiet) {
+            fprintf(stderr,
+                    "%swarning: reference update at step %ld, t = %.4g s "
+                    "(%s) deferred: %s; the run goes on with the reference "
+                    "of step %ld and tries again after %ld steps\n",
+                    isatty(STDERR_FILENO) ? "\r" : "", e->step, e->time,
+                    gsn_reference_reason_name(reason), report.cause, ref->step,
+                    (long)r->c->reference_min_steps
+                        << (ref->deferred_run < 16 ? ref->deferred_run : 16));
+            fflush(stderr);
+        }
+        return GSN_OK;
+    }
     traction_resultants(r);
     const struct gsn_explicit *e = r->reference->loop;
     r->total_steps = steps_to_end(r);

@@ -19,7 +19,9 @@
  * - a layer pulled ten spacings off the block (cells longer than the
  *   covering supports reach) gets shape functions on an updated reference:
  *   the supports are repaired where a point is not covered, and every row
- *   reproduces 1 and x to round-off; without the repair the build fails. */
+ *   reproduces 1 and x to round-off; without the repair the build fails;
+ * - an update that cannot be built is deferred, the run going on as it was.
+ */
 #include "geoscni/case.h"
 #include "geoscni/tensor.h"
 #include "reference.h"
@@ -503,11 +505,63 @@ static void test_support_repair(void)
     gsn_model_free(&m);
 }
 
+/* An update whose new discretization cannot be built (here the block
+ * squashed flat, x = 0: no cell and no moment matrix survives) is deferred:
+ * the loop, its reference and state stay as they were, and the next
+ * attempt waits min_steps times 2^(deferred run) steps. */
+static void test_deferred_update(void)
+{
+    struct block b;
+    block_create("cases/block_elastic.yaml", &b);
+    b.c.reference_update = 1;
+    b.c.reference_min_steps = 5;
+    b.c.reference_strain = 0.1;
+    struct gsn_explicit *e = b.reference->loop;
+    const int n = e->particle_count;
+    const double flatten[9] = {-1, 0, 0, 0, 0, 0, 0, 0, 0};
+    fixture_set_linear_field(e, flatten);
+    double *d = malloc(sizeof(double) * 3 * (size_t)n);
+    memcpy(d, e->displacement, sizeof(double) * 3 * (size_t)n);
+    e->step = 100;
+    e->distortion_strain = 1.0;
+    TEST_INT(gsn_reference_due(b.reference), GSN_REFERENCE_STRAIN);
+    struct gsn_reference_report report;
+    int rc = gsn_reference_update(b.reference, &report);
+    if (rc != GSN_OK)
+        gsn_error_print(stderr);
+    TEST_INT(rc, GSN_OK);
+    printf("deferred update: %s\n", report.cause);
+    TEST_INT(report.deferred, 1);
+    TEST_TRUE(report.cause[0] != '\0');
+    TEST_TRUE(b.reference->loop == e);
+    TEST_TRUE(b.reference->model == &b.model);
+    TEST_INT(b.reference->update_count, 0);
+    TEST_INT(b.reference->deferred_count, 1);
+    TEST_TRUE(memcmp(d, e->displacement, sizeof(double) * 3 * (size_t)n) == 0);
+    /* the next attempt after 2 x 5 steps, then after 4 x 5 */
+    e->step = 109;
+    TEST_INT(gsn_reference_due(b.reference), GSN_REFERENCE_NOT_DUE);
+    e->step = 110;
+    TEST_INT(gsn_reference_due(b.reference), GSN_REFERENCE_STRAIN);
+    TEST_INT(gsn_reference_update(b.reference, &report), GSN_OK);
+    TEST_INT(report.deferred, 1);
+    e->step = 129;
+    TEST_INT(gsn_reference_due(b.reference), GSN_REFERENCE_NOT_DUE);
+    e->step = 130;
+    TEST_INT(gsn_reference_due(b.reference), GSN_REFERENCE_STRAIN);
+    /* the loop still steps on its reference */
+    fixture_set_linear_field(e, (const double[9]){0});
+    TEST_INT(gsn_explicit_step(e), GSN_OK);
+    free(d);
+    block_destroy(&b);
+}
+
 int main(void)
 {
     test_begin();
     test_remesh_keeps_leaked_particle();
     test_support_repair();
+    test_deferred_update();
     test_uniform_update();
     test_rotation_with_updates();
     test_failed_point_energy(GSN_STABILIZATION_MSCNI);

@@ -179,6 +179,12 @@ struct gsn_dataset_info {
 #define GSN_CHECKPOINT_ATTR_REFERENCE_STEP "reference_step"
 #define GSN_CHECKPOINT_ATTR_UPDATE_ENERGY "reference_update_energy"
 #define GSN_CHECKPOINT_ATTR_REMESHES "body_remeshes"
+/* Deferred updates (their count, the run of them since the last update and
+ * the step of the last attempt): absent in checkpoints of before 2026-12-03,
+ * which had none */
+#define GSN_CHECKPOINT_ATTR_DEFERRED "reference_deferred"
+#define GSN_CHECKPOINT_ATTR_DEFERRED_RUN "reference_deferred_run"
+#define GSN_CHECKPOINT_ATTR_ATTEMPT_STEP "reference_attempt_step"
 /* The clock: the run's first time step, the present one (an update may
  * change it) and the time and step where it began (s, s, s, -) */
 #define GSN_CHECKPOINT_ATTR_TIME_STEP_FIRST "time_step_first"
