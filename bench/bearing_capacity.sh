@@ -20,9 +20,8 @@ out=${2:-/tmp/geoscni_bearing}
 spacings=${3:-0.2 0.1}
 methods=${4:-scni mscni}
 kinematics_list=${5:-small large}
-# One mesh per spacing, the same on every run (gmsh's Delaunay instead of
-# HXT, docs/pre.md): HXT's meshes move the plateau by about 1%.
-export GEOSCNI_REPRODUCIBLE=${GEOSCNI_REPRODUCIBLE-1}
+# One mesh per spacing, the same on every run (gmsh's Delaunay, pre's
+# default; HXT's meshes move the plateau by about 1%: docs/pre.md).
 geoscni=$root/$build/bin/geoscni
 . "$root/bench/economy_common.sh" # curve, peak
 [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }

@@ -425,7 +425,8 @@ static int read_particles(struct reader *r, const yaml_node_t *root,
                           struct gsn_case *c)
 {
     static const char *const keys[] = {"spacing", "facet_points", "refine",
-                                       NULL};
+                                       "mesher", NULL};
+    static const char *const meshers[] = {"delaunay", "hxt", NULL};
     yaml_node_t *node = NULL;
     GSN_CALL(require_key(r, root, "", "particles",
                          "a mapping with 'spacing' (m)", &node));
@@ -442,8 +443,20 @@ static int read_particles(struct reader *r, const yaml_node_t *root,
                   "or 3 (three points per facet triangle), got %d",
                   r->path, node_line(points), c->facet_points);
     }
+    yaml_node_t *mesher = mapping_find(r, node, "mesher");
+    if (mesher) {
+        int index = 0;
+        GSN_CALL(parse_word(r, mesher, "particles.mesher", meshers, &index));
+        c->mesher = (enum gsn_mesher)index;
+        c->mesher_line = node_line(mesher);
+    }
     GSN_CALL(read_refinements(r, node, c));
     return GSN_OK;
+}
+
+const char *gsn_mesher_name(enum gsn_mesher mesher)
+{
+    return mesher == GSN_MESHER_HXT ? "hxt" : "delaunay";
 }
 
 static int read_kernel(struct reader *r, const yaml_node_t *root,
@@ -1045,8 +1058,10 @@ void gsn_case_name(const char *path, char *out, size_t size)
 
 int gsn_case_pre_signature(const struct gsn_case *c, char *out, size_t size)
 {
-    int n = snprintf(out, size, "geometry=%s;spacing=%.17g;facet_points=%d",
-                     c->geometry, c->particle_spacing, c->facet_points);
+    int n = snprintf(out, size,
+                     "geometry=%s;spacing=%.17g;facet_points=%d;mesher=%s",
+                     c->geometry, c->particle_spacing, c->facet_points,
+                     gsn_mesher_name(c->mesher));
     GSN_CHECK(n > 0 && (size_t)n < size, GSN_ERR_INTERNAL,
               "pre signature too long");
     for (int i = 0; i < c->refinement_count; ++i) {
@@ -1112,8 +1127,8 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
     const struct gsn_material *m = &c->material;
     fprintf(out, "# resolved parameters of %s\n", c->path);
     fprintf(out, "geometry: '%s'\n", c->geometry);
-    fprintf(out, "particles: {spacing: %.17g, facet_points: %d",
-            c->particle_spacing, c->facet_points);
+    fprintf(out, "particles: {spacing: %.17g, facet_points: %d, mesher: %s",
+            c->particle_spacing, c->facet_points, gsn_mesher_name(c->mesher));
     write_refinements(c, out);
     fputs("}\n", out);
     fprintf(out, "kernel: {support: %.17g, basis: %s}\n", c->kernel_support,

@@ -262,10 +262,10 @@ static int gmsh_set_size(double min, double max)
     return GSN_OK;
 }
 
-/* Meshes the volume. HXT is fast but, in gmsh 4.8, not reproducible even
- * on one thread (the node count of the L-shape varies by 1 % from run to
- * run); Delaunay on one thread is, and about 5 times slower. HXT falls back
- * to Delaunay where it fails. */
+/* Meshes the volume: Delaunay on one thread by default, the same mesh on
+ * every run; HXT (particles.mesher: hxt) is faster but, in gmsh 4.8, not
+ * reproducible even on one thread (the node count of the L-shape varies by
+ * 1 % from run to run), and falls back to Delaunay where it fails. */
 static int gmsh_generate(const struct gsn_case *c, int reproducible)
 {
     int ierr = 0;
@@ -569,11 +569,13 @@ static int pre_check_surfaces(const struct gsn_case *c)
     return GSN_OK;
 }
 
-static int pre_reproducible(const struct gsn_pre_options *options)
+/* Delaunay unless the case asks for HXT (particles.mesher); tests may
+ * force Delaunay on any case */
+static int pre_reproducible(const struct gsn_case *c,
+                            const struct gsn_pre_options *options)
 {
-    const char *variable = getenv("GEOSCNI_REPRODUCIBLE");
-    return (options && options->reproducible) ||
-           (variable && variable[0] && strcmp(variable, "0") != 0);
+    return c->mesher == GSN_MESHER_DELAUNAY ||
+           (options && options->reproducible);
 }
 
 /* What the child learns before the real mesh: the geometry read and
@@ -650,7 +652,7 @@ static int pre_mesh(struct pre_child *child, const struct gsn_case *c,
                     const struct gsn_pre_options *options, struct mesh *m,
                     double *estimate)
 {
-    int reproducible = pre_reproducible(options);
+    int reproducible = pre_reproducible(c, options);
     double h = c->particle_spacing;
     struct survey survey;
     GSN_CALL(pre_survey(child, c, reproducible, &survey));
@@ -885,10 +887,16 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
                "%.1e, twins %.1e, surface areas %.1e (tolerance 1e-10)\n",
                check.body_volume, check.volume_error, check.closure_error,
                check.moment_error, check.twin_error, check.area_error);
-        printf("pre: time %.2f s: meshing %.2f, Delaunay %.2f, cells %.2f, "
-               "writing %.2f -> %s\n",
-               omp_get_wtime() - t0, t_mesh, check.time_delaunay,
-               check.time_cells, t_write, path);
+        printf("pre: time %.2f s: meshing %.2f (gmsh's %s%s), Delaunay %.2f, "
+               "cells %.2f, writing %.2f -> %s\n",
+               omp_get_wtime() - t0, t_mesh,
+               gsn_mesher_name(pre_reproducible(c, options)
+                                   ? GSN_MESHER_DELAUNAY
+                                   : GSN_MESHER_HXT),
+               pre_reproducible(c, options)
+                   ? ": the same particles on every run"
+                   : ", not reproducible: particles.mesher",
+               check.time_delaunay, check.time_cells, t_write, path);
         GSN_CALL_GOTO(pre_refine_report(c, &m), rc, done);
     }
 done:
@@ -933,7 +941,7 @@ static int pre_check_child(struct pre_child *child, void *arg)
     struct gmsh_session session; /* never ended: the child exits */
     GSN_CALL(gmsh_session_begin_case(&session, c));
     struct survey s;
-    GSN_CALL(pre_survey(child, c, pre_reproducible(job->options), &s));
+    GSN_CALL(pre_survey(child, c, pre_reproducible(c, job->options), &s));
     /* estimate, at least, volume, surfaces meshed, unnamed surfaces */
     double numbers[5] = {s.estimate, s.at_least, s.volume, 0, 0};
     GSN_CALL(pre_unnamed_surfaces(&numbers[4]));

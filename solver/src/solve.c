@@ -1478,9 +1478,11 @@ static int run_setup(struct run *r)
     GSN_CALL(gsn_frame_allocate(&r->frame, r->model.particle_count));
     GSN_CALL(choose_time_step(r));
     if (!r->options->quiet)
-        printf("solver: %d particles, %d integration points, %s%s%s, %.1f "
-               "MB of shape functions, set up in %.2f s, %ld steps\n",
-               r->model.particle_count, r->reference->quadrature->point_count,
+        printf("solver: %d particles (gmsh's %s mesh), %d integration "
+               "points, %s%s%s, %.1f MB of shape functions, set up in %.2f s, "
+               "%ld steps\n",
+               r->model.particle_count, gsn_mesher_name(c->mesher),
+               r->reference->quadrature->point_count,
                gsn_integration_name(c->integration),
                c->stabilization != GSN_STABILIZATION_NONE ? " + " : "",
                c->stabilization != GSN_STABILIZATION_NONE

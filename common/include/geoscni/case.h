@@ -102,6 +102,15 @@ struct gsn_material {
     double dp_dilatancy;  /* beta of the potential; = alpha: associated */
 };
 
+/* gmsh's volume mesher, whose nodes are the particles: Delaunay (one
+ * thread) gives the same particles on every run; HXT is several times
+ * faster but, in gmsh 4.8, not reproducible (about 0.1% of the particles
+ * differ from run to run). */
+enum gsn_mesher { GSN_MESHER_DELAUNAY = 0, GSN_MESHER_HXT };
+
+/* "delaunay" or "hxt" */
+const char *gsn_mesher_name(enum gsn_mesher mesher);
+
 struct gsn_case {
     char path[GSN_PATH_SIZE];     /* the case file as given */
     char geometry[GSN_PATH_SIZE]; /* resolved against the case file folder */
@@ -109,8 +118,10 @@ struct gsn_case {
     int particle_spacing_line;
     double particle_spacing; /* m */
     int facet_points;        /* quadrature points per Voronoi facet */
-    double kernel_support;   /* normalized support a/h */
-    int kernel_basis_order;  /* 1 linear, 2 quadratic */
+    enum gsn_mesher mesher;  /* gmsh's volume mesher (particles.mesher) */
+    int mesher_line;
+    double kernel_support;  /* normalized support a/h */
+    int kernel_basis_order; /* 1 linear, 2 quadratic */
     enum gsn_integration integration;
     int gauss_points; /* per direction, GAUSS only */
     enum gsn_stabilization stabilization;

@@ -17,10 +17,8 @@ struct gsn_pre_options {
     int force;   /* allow more than GSN_DEFAULT_MAX_PARTICLES particles */
     int threads; /* 0: OpenMP's default */
     int quiet;   /* no progress output */
-    /* the same input gives the same particles: gmsh's Delaunay mesher on one
-     * thread (about 5 times slower) instead of HXT, which varies from run to
-     * run in gmsh 4.8; also set by the environment variable
-     * GEOSCNI_REPRODUCIBLE=1 */
+    /* for tests: gmsh's Delaunay mesher even where the case asks for HXT
+     * (particles.mesher; Delaunay is the default) */
     int reproducible;
     /* for tests: every cell that meets the boundary is intersected with the
      * mesh tetrahedra, also where its boundary planes would do (the brute
