@@ -4,7 +4,7 @@
 set -eu
 
 packages="build-essential cmake pkg-config clang-format time
-libgmsh-dev gmsh libcgal-dev libgmp-dev libmpfr-dev libhdf5-dev hdf5-tools
+libgmsh-dev gmsh libcgal-dev libgmp-dev libmpfr-dev libhdf5-dev hdf5-tools zlib1g-dev
 libvtk9-dev python3-vtk9 python3-numpy python3-meshio python3-h5py
 libyaml-dev libsuitesparse-dev xvfb xauth libgl1-mesa-dri"
 

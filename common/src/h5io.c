@@ -6,8 +6,10 @@
 #include "geoscni/version.h"
 
 #include <errno.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <zlib.h>
 
 static void h5_quiet(void)
 {
@@ -33,6 +35,30 @@ static int h5_failure_errno(void)
     H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, h5_errno_walk, &found);
     return found ? found : saved;
 }
+
+static herr_t h5_checksum_walk(unsigned n, const H5E_error2_t *error,
+                               void *data)
+{
+    (void)n;
+    int *found = data;
+    if (error->desc &&
+        (strstr(error->desc, "checksum") || strstr(error->desc, "Fletcher32")))
+        *found = 1;
+    return 0;
+}
+
+/* 1 when the HDF5 call that just failed found a checksum that does not
+ * match (a dataset's Fletcher32, or the metadata's own). */
+static int h5_failure_checksum(void)
+{
+    int found = 0;
+    H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, h5_checksum_walk, &found);
+    return found;
+}
+
+#define H5_DAMAGED                                                             \
+    "its checksum does not match: the file is damaged (a changed byte); "      \
+    "make it again with the stage that wrote it"
 
 /* The file name of a handle, for messages. */
 static const char *h5_file_name(hid_t loc, char *buffer, size_t size)
@@ -180,13 +206,24 @@ int gsn_h5_attr_write_int(hid_t loc, const char *name, int value)
     return GSN_OK;
 }
 
+/* That attribute name of loc exists; a damaged header says so. */
+static int h5_attr_require(hid_t loc, const char *name)
+{
+    char file[256];
+    htri_t exists = H5Aexists(loc, name);
+    GSN_CHECK(exists >= 0 || !h5_failure_checksum(), GSN_ERR_IO,
+              "%s: attribute '%s': " H5_DAMAGED,
+              h5_file_name(loc, file, sizeof file), name);
+    GSN_CHECK(exists > 0, GSN_ERR_INPUT, "%s: attribute '%s' is missing",
+              h5_file_name(loc, file, sizeof file), name);
+    return GSN_OK;
+}
+
 static int h5_attr_read_scalar(hid_t loc, const char *name, hid_t type,
                                H5T_class_t expected, void *value)
 {
     char file[256];
-    GSN_CHECK(H5Aexists(loc, name) > 0, GSN_ERR_INPUT,
-              "%s: attribute '%s' is missing",
-              h5_file_name(loc, file, sizeof file), name);
+    GSN_CALL(h5_attr_require(loc, name));
     hid_t attr = H5Aopen(loc, name, H5P_DEFAULT);
     hid_t stored = attr >= 0 ? H5Aget_type(attr) : H5I_INVALID_HID;
     hid_t space = attr >= 0 ? H5Aget_space(attr) : H5I_INVALID_HID;
@@ -224,9 +261,7 @@ int gsn_h5_attr_read_string(hid_t loc, const char *name, char **value)
 {
     char file[256];
     *value = NULL;
-    GSN_CHECK(H5Aexists(loc, name) > 0, GSN_ERR_INPUT,
-              "%s: attribute '%s' is missing",
-              h5_file_name(loc, file, sizeof file), name);
+    GSN_CALL(h5_attr_require(loc, name));
     hid_t attr = H5Aopen(loc, name, H5P_DEFAULT);
     hid_t stored = attr >= 0 ? H5Aget_type(attr) : H5I_INVALID_HID;
     int ok = stored >= 0 && H5Tget_class(stored) == H5T_STRING &&
@@ -253,7 +288,24 @@ int gsn_h5_create(const char *path, const char *kind, const char *case_yaml,
                   hid_t *file)
 {
     h5_quiet();
-    *file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    /* the 1.8 format's superblock, object headers (the attributes, with
+     * each dataset's checksum), heaps and B-trees carry checksums of their
+     * own, so damaged metadata is found as damaged data is. Not the 1.10
+     * format: its superblock marks a file open for writing, and a run
+     * killed with its results.h5.part open left it unreadable (no restart,
+     * no post of what it had); nor HDF5's Fletcher32 filter on chunked
+     * data: the 1.8 chunk index has no checksum of its own (a flipped bit
+     * of a chunk's filter mask skipped the data's check; test_h5_damage). */
+    hid_t access = H5Pcreate(H5P_FILE_ACCESS);
+    if (access >= 0 &&
+        H5Pset_libver_bounds(access, H5F_LIBVER_V18, H5F_LIBVER_LATEST) < 0) {
+        H5Pclose(access);
+        access = H5I_INVALID_HID;
+    }
+    GSN_CHECK(access >= 0, GSN_ERR_LIBRARY, "%s: cannot set HDF5's file format",
+              path);
+    *file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, access);
+    H5Pclose(access);
     if (*file < 0)
         return GSN_WRITE_ERROR(path, h5_failure_errno(),
                                "cannot create the file (is the folder "
@@ -287,7 +339,10 @@ int gsn_h5_open(const char *path, const char *kind, int writable, hid_t *file)
               "%s: not found or not an HDF5 file", path);
     *file =
         H5Fopen(path, writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
-    GSN_CHECK(*file >= 0, GSN_ERR_IO, "%s: cannot open the HDF5 file", path);
+    GSN_CHECK(*file >= 0, GSN_ERR_IO, "%s: cannot open the HDF5 file%s", path,
+              h5_failure_checksum() ? ": " H5_DAMAGED
+                                    : " (damaged, or written by another "
+                                      "program?)");
     int rc = GSN_OK, version = -1;
     char *stored_kind = NULL;
     GSN_CHECK_GOTO(H5Aexists(*file, GSN_ATTR_SCHEMA_VERSION) > 0, rc,
@@ -347,19 +402,53 @@ int gsn_h5_flush(hid_t file)
 }
 
 /* Opens a dataset and checks its type class, rank and columns. */
+/* The checksum of a dataset's data as it is in memory (zlib's CRC-32 of
+ * every byte, a string's to its fixed size): written beside the data as an
+ * attribute of the dataset, whose header the 1.8 format checksums too; a
+ * read recomputes it. */
+static uint32_t h5_data_checksum(enum gsn_h5_type type, size_t values,
+                                 const void *data)
+{
+    size_t size = type == GSN_H5_DOUBLE
+                      ? sizeof(double)
+                      : (type == GSN_H5_INT ? sizeof(int) : GSN_H5_STRING_SIZE);
+    size_t bytes = values * size;
+    uLong crc = crc32(0L, Z_NULL, 0);
+    const unsigned char *at = data;
+    while (bytes > 0) { /* zlib takes at most UINT_MAX a call */
+        uInt piece = bytes > (1u << 30) ? (1u << 30) : (uInt)bytes;
+        crc = crc32(crc, at, piece);
+        at += piece;
+        bytes -= piece;
+    }
+    return (uint32_t)crc;
+}
+
+static int h5_checksum_write(hid_t dataset, const struct gsn_dataset_info *info,
+                             size_t rows, const void *data)
+{
+    unsigned value =
+        h5_data_checksum(info->type, rows * (size_t)info->columns, data);
+    return h5_attr_write_scalar(dataset, GSN_ATTR_CHECKSUM, H5T_NATIVE_UINT,
+                                &value);
+}
+
 static int h5_dataset_open(hid_t loc, const struct gsn_dataset_info *info,
                            hid_t *dataset, size_t *rows)
 {
     char file[256];
     h5_file_name(loc, file, sizeof file);
     *dataset = H5I_INVALID_HID;
-    GSN_CHECK(gsn_h5_exists(loc, info->path), GSN_ERR_INPUT,
+    int exists = gsn_h5_exists(loc, info->path);
+    GSN_CHECK(exists || !h5_failure_checksum(), GSN_ERR_IO,
+              "%s: dataset '%s': " H5_DAMAGED, file, info->path);
+    GSN_CHECK(exists, GSN_ERR_INPUT,
               "%s: dataset '%s' (%s) is missing; was the file written by "
               "another version or cut short?",
               file, info->path, info->description);
     *dataset = H5Dopen2(loc, info->path, H5P_DEFAULT);
-    GSN_CHECK(*dataset >= 0, GSN_ERR_IO, "%s: cannot open dataset '%s'", file,
-              info->path);
+    GSN_CHECK(*dataset >= 0, GSN_ERR_IO, "%s: cannot open dataset '%s'%s", file,
+              info->path, h5_failure_checksum() ? ": " H5_DAMAGED : "");
     hid_t space = H5Dget_space(*dataset);
     hid_t type = H5Dget_type(*dataset);
     hsize_t dims[2] = {0, 0};
@@ -405,6 +494,34 @@ int gsn_h5_rows(hid_t loc, const struct gsn_dataset_info *info, size_t *rows)
     return GSN_OK;
 }
 
+/* The data just read against the checksum written with it. */
+static int h5_checksum_check(hid_t loc, const struct gsn_dataset_info *info,
+                             size_t rows, const void *data)
+{
+    char file[256];
+    hid_t dataset = H5Dopen2(loc, info->path, H5P_DEFAULT);
+    unsigned stored = 0;
+    int found = dataset >= 0 && H5Aexists(dataset, GSN_ATTR_CHECKSUM) > 0;
+    int damaged = !found && h5_failure_checksum();
+    int rc = found ? h5_attr_read_scalar(dataset, GSN_ATTR_CHECKSUM,
+                                         H5T_NATIVE_UINT, H5T_INTEGER, &stored)
+                   : GSN_OK;
+    if (dataset >= 0)
+        H5Dclose(dataset);
+    GSN_CALL(rc);
+    GSN_CHECK(found, GSN_ERR_IO, "%s: dataset '%s' %s",
+              h5_file_name(loc, file, sizeof file), info->path,
+              damaged ? "cannot be checked: " H5_DAMAGED
+                      : "has no checksum: the file is damaged or not "
+                        "geoscni's; make it again with the stage that wrote "
+                        "it");
+    GSN_CHECK(h5_data_checksum(info->type, rows * (size_t)info->columns,
+                               data) == stored,
+              GSN_ERR_IO, "%s: dataset '%s': " H5_DAMAGED,
+              h5_file_name(loc, file, sizeof file), info->path);
+    return GSN_OK;
+}
+
 int gsn_h5_read(hid_t loc, const struct gsn_dataset_info *info, size_t rows,
                 void *data)
 {
@@ -414,11 +531,13 @@ int gsn_h5_read(hid_t loc, const struct gsn_dataset_info *info, size_t rows,
     GSN_CALL(h5_dataset_open(loc, info, &dataset, &stored_rows));
     int ok = stored_rows == rows;
     herr_t status = 0;
+    int damaged = 0;
     if (ok && rows > 0) {
         hid_t type = h5_memory_type(info->type, &owned);
         status = type >= 0 ? H5Dread(dataset, type, H5S_ALL, H5S_ALL,
                                      H5P_DEFAULT, data)
                            : -1;
+        damaged = status < 0 && h5_failure_checksum();
     }
     if (owned >= 0)
         H5Tclose(owned);
@@ -426,8 +545,10 @@ int gsn_h5_read(hid_t loc, const struct gsn_dataset_info *info, size_t rows,
     GSN_CHECK(ok, GSN_ERR_INPUT, "%s: dataset '%s' has %zu rows, expected %zu",
               h5_file_name(loc, file, sizeof file), info->path, stored_rows,
               rows);
-    GSN_CHECK(status >= 0, GSN_ERR_IO, "%s: cannot read dataset '%s'",
-              h5_file_name(loc, file, sizeof file), info->path);
+    GSN_CHECK(status >= 0, GSN_ERR_IO, "%s: cannot read dataset '%s'%s",
+              h5_file_name(loc, file, sizeof file), info->path,
+              damaged ? ": " H5_DAMAGED : "");
+    GSN_CALL(h5_checksum_check(loc, info, rows, data));
     return GSN_OK;
 }
 
@@ -448,9 +569,11 @@ static int h5_overwrite(hid_t loc, const struct gsn_dataset_info *info,
     int ok = rows == 0 ||
              H5Dwrite(dataset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0;
     int error_number = ok ? 0 : h5_failure_errno();
+    int rc = ok ? h5_checksum_write(dataset, info, rows, data) : GSN_OK;
     if (owned >= 0)
         H5Tclose(owned);
     H5Dclose(dataset);
+    GSN_CALL(rc);
     if (!ok) {
         char what[600];
         snprintf(what, sizeof what, "cannot overwrite dataset '%s'",
@@ -492,7 +615,9 @@ int gsn_h5_write(hid_t loc, const struct gsn_dataset_info *info, size_t rows,
         H5Tclose(owned);
     int rc = GSN_OK;
     if (ok) {
-        rc = gsn_h5_attr_write_string(dataset, GSN_ATTR_UNITS, info->units);
+        rc = h5_checksum_write(dataset, info, rows, data);
+        if (rc == GSN_OK)
+            rc = gsn_h5_attr_write_string(dataset, GSN_ATTR_UNITS, info->units);
         if (rc == GSN_OK)
             rc = gsn_h5_attr_write_string(dataset, GSN_ATTR_DESCRIPTION,
                                           info->description);

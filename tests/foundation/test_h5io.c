@@ -73,7 +73,7 @@ static void expect_refusal(const char *path, const char *fragment)
 {
     struct gsn_model m;
     int rc = gsn_model_read(path, &m);
-    TEST_INT(rc, GSN_ERR_INPUT);
+    TEST_INT(gsn_error_exit_status(rc), 2); /* bad input or a damaged file */
     if (!strstr(gsn_error_message(), fragment)) {
         TEST_TRUE(!"message names the problem");
         fprintf(stderr, "  message: %s\n  expected to contain: %s\n",
@@ -109,7 +109,18 @@ static void delete_area(hid_t file)
 
 static void corrupt_owner(hid_t file)
 {
+    /* written as a writer would (with its checksum), so that the reader's
+     * range check is what refuses it */
     int owner[11] = {0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 42};
+    TEST_INT(gsn_h5_write(file, &gsn_model_datasets[GSN_MODEL_FACET_OWNER], 11,
+                          owner),
+             GSN_OK);
+}
+
+/* a value changed behind the writer's back (its checksum left as it was) */
+static void flip_owner(hid_t file)
+{
+    int owner[11] = {0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1}; /* [10] was 0 */
     hid_t dataset = H5Dopen2(file, "facets/owner", H5P_DEFAULT);
     TEST_TRUE(H5Dwrite(dataset, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                        owner) >= 0);
@@ -189,6 +200,7 @@ int main(void)
         {set_version_99,
          "schema version 99, but this geoscni reads version " SCHEMA_TEXT},
         {set_kind_results, "a results file, but a model file is expected"},
+        {flip_owner, "dataset 'facets/owner': its checksum does not match"},
         {delete_area, "dataset 'facets/area' (area of the facet) is missing"},
         {corrupt_owner, "facets/owner[10] = 42 is out of range [0, 2)"},
     };

@@ -10,8 +10,11 @@ extern "C" {
 #endif
 
 /* 2 (2026-12-02): model.h5 holds mesh/tetrahedron_face, the checkpoint the
- * reference configuration of the last update (issue 15) */
-#define GSN_SCHEMA_VERSION 2
+ * reference configuration of the last update (issue 15); 3 (2026-12-03):
+ * every dataset carries the CRC-32 of its data (attribute 'crc32') and the
+ * metadata the 1.8 format's checksums (issue 19): no damaged file is read
+ * unnoticed */
+#define GSN_SCHEMA_VERSION 3
 #define GSN_FILE_KIND_MODEL "model"
 #define GSN_FILE_KIND_RESULTS "results"
 
@@ -23,6 +26,7 @@ extern "C" {
 #define GSN_ATTR_LIBRARY_VERSIONS "library_versions"
 #define GSN_ATTR_UNITS "units"
 #define GSN_ATTR_DESCRIPTION "description"
+#define GSN_ATTR_CHECKSUM "crc32" /* zlib's CRC-32 of the data (h5io.c) */
 #define GSN_ATTR_PRE_SIGNATURE                                                 \
     "pre_inputs" /* model.h5: gsn_case_pre_signature */
 
