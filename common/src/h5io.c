@@ -93,6 +93,20 @@ static H5T_class_t h5_type_class(enum gsn_h5_type type)
                : (type == GSN_H5_INT ? H5T_INTEGER : H5T_STRING);
 }
 
+int gsn_h5_group_open(hid_t loc, const char *path, const char *what,
+                      hid_t *group)
+{
+    char file[256];
+    h5_file_name(loc, file, sizeof file);
+    *group = H5Gopen2(loc, path, H5P_DEFAULT);
+    GSN_CHECK(*group >= 0, h5_failure_checksum() ? GSN_ERR_IO : GSN_ERR_INPUT,
+              "%s: %s '%s' %s", file, what, path,
+              h5_failure_checksum() ? "cannot be read: " H5_DAMAGED
+                                    : "is missing (the file was cut short or "
+                                      "damaged)");
+    return GSN_OK;
+}
+
 int gsn_h5_exists(hid_t loc, const char *path)
 {
     char partial[512];

@@ -94,9 +94,8 @@ int gsn_results_frames_drop_after(hid_t file, int step, int *count,
     for (; kept > 0; --kept) {
         char name[64];
         GSN_CALL(frame_group_name(kept - 1, name, sizeof name));
-        hid_t group = H5Gopen2(file, name, H5P_DEFAULT);
-        GSN_CHECK(group >= 0, GSN_ERR_INPUT,
-                  "frame group '%s' is missing from the results file", name);
+        hid_t group = H5I_INVALID_HID;
+        GSN_CALL(gsn_h5_group_open(file, name, "frame group", &group));
         int frame_step = 0;
         int rc = gsn_h5_attr_read_int(group, GSN_FRAME_ATTR_STEP, &frame_step);
         H5Gclose(group);
@@ -125,9 +124,8 @@ int gsn_results_frame_read(hid_t file, int index, struct gsn_frame *frame)
               count);
     char name[64];
     GSN_CALL(frame_group_name(index, name, sizeof name));
-    hid_t group = H5Gopen2(file, name, H5P_DEFAULT);
-    GSN_CHECK(group >= 0, GSN_ERR_INPUT,
-              "frame group '%s' is missing from the results file", name);
+    hid_t group = H5I_INVALID_HID;
+    GSN_CALL(gsn_h5_group_open(file, name, "frame group", &group));
     int rc = GSN_OK;
     GSN_CALL_GOTO(
         gsn_h5_attr_read_double(group, GSN_FRAME_ATTR_TIME, &frame->time), rc,

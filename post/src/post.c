@@ -474,10 +474,10 @@ static int post_pvd_write(const char *path, hid_t results, int count,
     for (int k = 0; k < count; ++k) {
         char group_name[64];
         snprintf(group_name, sizeof group_name, GSN_FRAME_GROUP_FORMAT, k);
-        hid_t group = H5Gopen2(results, group_name, H5P_DEFAULT);
-        GSN_CHECK_GOTO(group >= 0, rc, GSN_ERR_INPUT, done,
-                       "frame group '%s' is missing from the results file",
-                       group_name);
+        hid_t group = H5I_INVALID_HID;
+        GSN_CALL_GOTO(
+            gsn_h5_group_open(results, group_name, "frame group", &group), rc,
+            done);
         double time = 0.0;
         rc = gsn_h5_attr_read_double(group, GSN_FRAME_ATTR_TIME, &time);
         gsn_h5_close(&group);
@@ -836,8 +836,9 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
               outdir);
     GSN_CALL(post_mesh_read(path, &s->mesh));
     size_t rows = 0;
-    hid_t first = H5Gopen2(s->results, "frames/000000", H5P_DEFAULT);
-    GSN_CHECK(first >= 0, GSN_ERR_INPUT, "results.h5 lacks frames/000000");
+    hid_t first = H5I_INVALID_HID;
+    GSN_CALL(
+        gsn_h5_group_open(s->results, "frames/000000", "frame group", &first));
     int field = 0; /* the first field written (output.fields) */
     while (field + 1 < GSN_FRAME_FIELD_COUNT &&
            !gsn_h5_exists(first, gsn_frame_fields[field].path))

@@ -548,9 +548,9 @@ static int read_checkpoint(struct run *r)
     struct gsn_explicit *e = r->reference->loop;
     GSN_CHECK(gsn_h5_exists(r->results, GSN_CHECKPOINT_GROUP), GSN_ERR_INPUT,
               "%s: no checkpoint to restart from", r->results_path);
-    hid_t group = H5Gopen2(r->results, GSN_CHECKPOINT_GROUP, H5P_DEFAULT);
-    GSN_CHECK(group >= 0, GSN_ERR_IO, "%s: cannot open the checkpoint",
-              r->results_path);
+    hid_t group = H5I_INVALID_HID;
+    GSN_CALL(
+        gsn_h5_group_open(r->results, GSN_CHECKPOINT_GROUP, "group", &group));
     int rc = GSN_OK, step = 0, boundaries = 0;
     double energy[4];
     if (H5Aexists(group, GSN_CHECKPOINT_ATTR_BOUNDARIES) > 0)

@@ -63,6 +63,11 @@ int gsn_h5_attr_read_string(hid_t loc, const char *name, char **value);
 /* Creates a group and the groups on its path, or opens it if it exists. */
 int gsn_h5_group(hid_t loc, const char *path, hid_t *group);
 
+/* Opens an existing group (what, e.g. "frame group", names it in the
+ * message); a missing or damaged one is an error naming the file. */
+int gsn_h5_group_open(hid_t loc, const char *path, const char *what,
+                      hid_t *group);
+
 /* 1 if every link on path exists below loc, else 0. */
 int gsn_h5_exists(hid_t loc, const char *path);
 
