@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/statvfs.h>
 #include <time.h>
@@ -224,4 +225,61 @@ int gsn_file_hash(const char *path, char out[GSN_FILE_HASH_SIZE])
     snprintf(out, GSN_FILE_HASH_SIZE, "%016llx %llu bytes",
              (unsigned long long)h, (unsigned long long)size);
     return GSN_OK;
+}
+
+/* A number after a key in a /proc-style file ("MemAvailable:  123 kB"). */
+static double read_key_number(const char *path, const char *key)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1.0;
+    char line[256];
+    double value = -1.0;
+    size_t n = strlen(key);
+    while (fgets(line, sizeof line, f))
+        if (strncmp(line, key, n) == 0) {
+            value = strtod(line + n, NULL);
+            break;
+        }
+    fclose(f);
+    return value;
+}
+
+static double read_number_file(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1.0;
+    char text[64] = "";
+    int ok = fgets(text, sizeof text, f) != NULL;
+    fclose(f);
+    return ok && text[0] >= '0' && text[0] <= '9' ? strtod(text, NULL) : -1.0;
+}
+
+double gsn_memory_available(const char **source)
+{
+    double best = -1.0;
+    *source = "unknown";
+    double kilobytes = read_key_number("/proc/meminfo", "MemAvailable:");
+    if (kilobytes >= 0.0) {
+        best = 1024.0 * kilobytes;
+        *source = "MemAvailable of /proc/meminfo";
+    }
+    double limit = read_number_file("/sys/fs/cgroup/memory.max");
+    double used = read_number_file("/sys/fs/cgroup/memory.current");
+    if (limit >= 0.0 && used >= 0.0 && (best < 0.0 || limit - used < best)) {
+        best = limit - used > 0.0 ? limit - used : 0.0;
+        *source = "the cgroup's memory.max";
+    }
+    struct rlimit address;
+    double virtual_kb = read_key_number("/proc/self/status", "VmSize:");
+    if (getrlimit(RLIMIT_AS, &address) == 0 &&
+        address.rlim_cur != RLIM_INFINITY && virtual_kb >= 0.0) {
+        double room = (double)address.rlim_cur - 1024.0 * virtual_kb;
+        if (best < 0.0 || room < best) {
+            best = room > 0.0 ? room : 0.0;
+            *source = "the address-space limit (ulimit -v)";
+        }
+    }
+    return best > 0.0 ? best : 0.0;
 }

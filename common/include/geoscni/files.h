@@ -51,6 +51,12 @@ enum { GSN_FILE_HASH_SIZE = 48 };
  * %llu bytes"), to tell whether an input changed (not cryptographic). */
 int gsn_file_hash(const char *path, char out[GSN_FILE_HASH_SIZE]);
 
+/* The memory this process may still take, in bytes: the least of the
+ * system's MemAvailable, the room left under its cgroup's memory.max, and
+ * the room left under its address-space limit (ulimit -v); source names
+ * which one it is. 0 with source "unknown" if none can be read. */
+double gsn_memory_available(const char **source);
+
 #ifdef __cplusplus
 }
 #endif

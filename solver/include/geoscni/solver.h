@@ -10,7 +10,8 @@ extern "C" {
 #endif
 
 struct gsn_solve_options {
-    int force;      /* accept a time step above the stable one */
+    int force;      /* accept a time step above the stable one, and a
+                       memory need above what is available */
     int restart;    /* continue from the checkpoint in results.h5 */
     int threads;    /* 0: OpenMP's default */
     int quiet;      /* no progress line */
