@@ -25,6 +25,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -88,6 +90,8 @@ struct run {
     double kinetic_ratio;      /* largest KE / W_int since the check began */
     double kinetic_ratio_time; /* s, when it occurred */
     double last_checkpoint;    /* wall-clock time of the last one, s */
+    double frame_bytes;        /* the most the file grew by at a frame */
+    int stopped_whole;         /* stopped for want of room, the file whole */
     int body_written; /* the remesh count of the body in the checkpoint */
     /* the full resultant of each traction entry on the present reference
      * configuration, N (the loop applies it times its load factor) */
@@ -639,8 +643,71 @@ done:
 /* A frame and its history row; a checkpoint with it at the end of the run
  * and when CHECKPOINT_INTERVAL seconds of wall time have passed since the
  * last one (a restart from any checkpoint gives the same bits). */
+/* The checkpoint's mark of a frame due at its step but not written (a
+ * stop for want of room). */
+static int set_frame_due(struct run *r, int due)
+{
+    hid_t group = H5I_INVALID_HID;
+    GSN_CALL(gsn_h5_group(r->results, GSN_CHECKPOINT_GROUP, &group));
+    int rc = gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_FRAME_DUE, due);
+    gsn_h5_close(&group);
+    return rc;
+}
+
+static int frame_due_at_checkpoint(struct run *r)
+{
+    int due = 0;
+    hid_t group = H5Gopen2(r->results, GSN_CHECKPOINT_GROUP, H5P_DEFAULT);
+    if (group >= 0 && H5Aexists(group, GSN_CHECKPOINT_ATTR_FRAME_DUE) > 0 &&
+        gsn_h5_attr_read_int(group, GSN_CHECKPOINT_ATTR_FRAME_DUE, &due) !=
+            GSN_OK)
+        due = 0;
+    if (group >= 0)
+        H5Gclose(group);
+    return due;
+}
+
+static double file_bytes(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 ? (double)st.st_size : 0.0;
+}
+
+/* Before a frame: room for it (twice the largest that the file grew by at
+ * a frame, and 1 MB), else the run stops as for a signal, its frames whole
+ * and a checkpoint of this step written in place, so that --restart goes
+ * on once there is room. A disk that another writer fills in between
+ * still fails the write itself (the file then stays results.h5.part). */
+static int check_room(struct run *r)
+{
+    struct statvfs disk;
+    if (statvfs(r->outdir, &disk) != 0)
+        return GSN_OK;
+    double room = (double)disk.f_bavail * (double)disk.f_frsize;
+    double need = 2.0 * r->frame_bytes + 1e6;
+    if (room >= need)
+        return GSN_OK;
+    const struct gsn_explicit *e = r->reference->loop;
+    GSN_CALL(write_checkpoint(r));
+    GSN_CALL(set_frame_due(r, 1));
+    GSN_CALL(
+        gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_INTERRUPTED, 1));
+    GSN_CALL(gsn_h5_flush(r->results));
+    r->stopped_whole = 1;
+    return gsn_error_raise(
+        GSN_ERR_NO_SPACE, __FILE__, __LINE__, __func__,
+        "%s: %.2f MB free on its disk, the next frame needs about %.2f MB: "
+        "the run stops at step %ld, t = %.6g s, with its %d frames whole and "
+        "a checkpoint of this step; free some space, then continue with "
+        "'geoscni solve %s -o %s --restart'",
+        r->outdir, room / 1e6, need / 1e6, e->step, e->time, r->frame_count,
+        r->c->path, r->outdir);
+}
+
 static int write_output(struct run *r, int final)
 {
+    GSN_CALL(check_room(r));
+    double before = file_bytes(r->results_temporary);
     fill_frame(r, r->c->output_fields);
     GSN_CALL(write_history_row(r));
     GSN_CALL(gsn_results_frame_write(r->results, r->frame_count, &r->frame));
@@ -650,6 +717,8 @@ static int write_output(struct run *r, int final)
         GSN_CALL(write_checkpoint(r));
         r->last_checkpoint = now;
     }
+    r->frame_bytes =
+        fmax(r->frame_bytes, file_bytes(r->results_temporary) - before);
     return GSN_OK;
 }
 
@@ -1271,6 +1340,14 @@ static int open_outputs(struct run *r)
     if (e->step == r->total_steps && !was_complete &&
         last_frame_step != (int)e->step)
         rc = write_output(r, 1);
+    /* Stopped for want of room before the frame (and row) of its step:
+     * written now, as the run would have */
+    else if (frame_due_at_checkpoint(r) && last_frame_step != (int)e->step) {
+        rc = write_output(r, e->step == r->total_steps);
+        if (rc == GSN_OK)
+            rc = set_frame_due(r, 0);
+        schedule_outputs(r);
+    }
 fail:
     fclose(old);
     return rc;
@@ -1524,6 +1601,7 @@ static int run_setup(struct run *r)
     GSN_CALL(check_model_source(r));
     GSN_CALL(gsn_model_read(r->model_path, &r->model));
     GSN_CALL(check_memory(r));
+    r->frame_bytes = 320.0 * r->model.particle_count; /* 40 doubles each */
     GSN_CALL(build_boundary_sets(r));
     GSN_CALL(gsn_material_model_create(gsn_material_name_for_case(&c->material),
                                        &c->material, &r->material));
@@ -1647,8 +1725,31 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
                              stopped_by(late_signal), r->outdir);
 done:
     if (r->results >= 0) {
-        gsn_h5_close(&r->results);
-        if (rename(r->results_temporary, r->results_path) != 0 && rc == GSN_OK)
+        char first[1024]; /* the failure of the run, not of the close (a
+                             copy: a raise writes over the message) */
+        snprintf(first, sizeof first, "%s", gsn_error_message());
+        int closed = gsn_h5_close(&r->results);
+        if (rc == GSN_OK)
+            rc = closed;
+        /* A write that failed (a full disk) may have left the last frame
+         * cut short: the file stays results.h5.part, which --restart
+         * continues from its last checkpoint once there is room; a
+         * complete file, or one that a numerical failure, a signal or a
+         * lack of memory stopped (its frames all whole), takes its final
+         * name; any other failure (a .part that a restart could not read)
+         * leaves it as it was. */
+        if ((rc == GSN_ERR_NO_SPACE && !r->stopped_whole) || rc == GSN_ERR_IO)
+            rc = gsn_error_raise(
+                rc, __FILE__, __LINE__, __func__,
+                "%s; the results so far stay in %s (not renamed: its last "
+                "frame may be cut short): once there is room, continue with "
+                "'geoscni solve %s -o %s --restart'",
+                first, r->results_temporary, c->path, r->outdir);
+        else if ((rc == GSN_OK || rc == GSN_ERR_NUMERICAL ||
+                  rc == GSN_ERR_INTERRUPTED || rc == GSN_ERR_MEMORY ||
+                  rc == GSN_ERR_NO_SPACE) &&
+                 rename(r->results_temporary, r->results_path) != 0 &&
+                 rc == GSN_OK)
             rc = gsn_error_raise(GSN_ERR_IO, __FILE__, __LINE__, __func__,
                                  "cannot rename %s to %s", r->results_temporary,
                                  r->results_path);

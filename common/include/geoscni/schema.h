@@ -187,6 +187,9 @@ struct gsn_dataset_info {
  * the step of the last attempt): absent in checkpoints of before 2026-12-03,
  * which had none */
 #define GSN_CHECKPOINT_ATTR_DEFERRED "reference_deferred"
+/* 1: the frame of the checkpoint's step is due but not written (a run
+ * stopped for want of room before it); a restart writes it first */
+#define GSN_CHECKPOINT_ATTR_FRAME_DUE "frame_due"
 #define GSN_CHECKPOINT_ATTR_DEFERRED_RUN "reference_deferred_run"
 #define GSN_CHECKPOINT_ATTR_ATTEMPT_STEP "reference_attempt_step"
 /* The clock: the run's first time step, the present one (an update may
