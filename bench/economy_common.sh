@@ -48,5 +48,5 @@ peak() {
         END { printf "%.4f %.4f", best / 1e6, at }' "$work/$1/history.csv"
 }
 
-particles() { grep '^solver:' "$work/$1.log" | sed 's/solver: \([0-9]*\) particles.*/\1/'; }
+particles() { grep '^solver: [0-9]* particles' "$work/$1.log" | sed 's/solver: \([0-9]*\) particles.*/\1/'; }
 step() { grep '^time step:' "$work/$1.log" | sed 's/time step: \([0-9.e+-]*\) s.*/\1/'; }

@@ -91,7 +91,7 @@ for threads in $thread_counts; do
             exit 1
         }
         rate=$(tr '\r' '\n' <"$work/log" | grep 'took' | sed 's/.*  \([0-9.e+]*\) particle-steps.*/\1/')
-        particles=$(grep '^solver:' "$work/log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
+        particles=$(grep '^solver: [0-9]* particles' "$work/log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
         phases=$(grep '^step time:' "$work/log" | sed 's/^step time: //')
         updates=$(grep '^reference updates:' "$work/log" | sed 's/^reference updates: \([0-9]*\) .*, \([0-9.e+-]* s\), \([0-9.]*%\) of the solve.*/\1 updates, \2, \3 of the solve/')
         echo "  $threads thread(s), run $i: $rate particle-steps/s ($particles particles)${phases:+; $phases}${updates:+; $updates}"

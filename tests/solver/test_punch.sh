@@ -18,7 +18,7 @@
     >"$out/log" 2>&1
 status=$?
 [ $status -eq 0 ] || fail "the punch ended with status $status: $(grep error "$out/log")"
-particles=$(grep '^solver:' "$out/log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
+particles=$(grep '^solver: [0-9]* particles' "$out/log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
 summary=$(sed -n 's/^failed particles: \([0-9]*\) .*/\1/p' "$out/log")
 work=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "external_work_J") c = i }
     END { print $c }' "$out/punch/history.csv")
