@@ -1,6 +1,7 @@
 #!/bin/sh
 # Several posts at once, each with its private Xvfb (post/src/display.c):
-# every one ends with status 0 and writes its pictures and plots. Before
+# every one ends with status 0 and writes its pictures and plots; then four
+# whole runs at once. Before
 # Xvfb ran with -noreset, a server reset between two render windows (its
 # last client gone) refused the next window now and then: "bad X server
 # connection" (abort) or a crash in XSync, 9 of 32 posts when four ran side
@@ -42,5 +43,22 @@ while [ $round -le $rounds ]; do
     done
     round=$((round + 1))
 done
-echo "$((posts * rounds)) posts side by side, $failures failures"
+# Issue 19, point 3: four whole runs at once (pre, solve and post with its
+# pictures), each into its own folder
+i=1
+while [ $i -le $posts ]; do
+    ("$geoscni" run box.yaml -o "$out/r$i" -q >"$out/run$i" 2>&1
+     echo $? >"$out/run_status$i") &
+    i=$((i + 1))
+done
+wait
+i=1
+while [ $i -le $posts ]; do
+    status=$(cat "$out/run_status$i")
+    [ "$status" = 0 ] || fail "run $i: status $status: $(grep error "$out/run$i")"
+    [ -s "$out/r$i/plots/energy.png" ] && ls "$out/r$i/pictures/"damage_*.png >/dev/null 2>&1 ||
+        fail "run $i: pictures or plots missing"
+    i=$((i + 1))
+done
+echo "$((posts * rounds)) posts and $posts runs side by side, $failures failures"
 [ $failures -eq 0 ]
