@@ -99,8 +99,15 @@ int gsn_results_frames_drop_after(hid_t file, int step, int *count,
          * rest */
         hid_t group = H5Gopen2(file, name, H5P_DEFAULT);
         if (group < 0 && kept == *count) {
+            char path[256];
+            if (H5Fget_name(file, path, sizeof path) < 0)
+                snprintf(path, sizeof path, "the results file");
             GSN_CHECK(H5Ldelete(file, name, H5P_DEFAULT) >= 0, GSN_ERR_IO,
-                      "cannot delete frame group '%s'", name);
+                      "%s: its last frame group '%s' was cut short where a "
+                      "restart cannot mend it (a write that failed, the "
+                      "disk full?): start over with 'geoscni run CASE.yaml "
+                      "-o OUTDIR --rerun'",
+                      path, name);
             continue;
         }
         if (group < 0) /* the error, with its message */

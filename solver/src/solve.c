@@ -1738,12 +1738,13 @@ done:
          * lack of memory stopped (its frames all whole), takes its final
          * name; any other failure (a .part that a restart could not read)
          * leaves it as it was. */
-        if ((rc == GSN_ERR_NO_SPACE && !r->stopped_whole) || rc == GSN_ERR_IO)
+        if (rc == GSN_ERR_NO_SPACE && !r->stopped_whole)
             rc = gsn_error_raise(
                 rc, __FILE__, __LINE__, __func__,
                 "%s; the results so far stay in %s (not renamed: its last "
                 "frame may be cut short): once there is room, continue with "
-                "'geoscni solve %s -o %s --restart'",
+                "'geoscni solve %s -o %s --restart' (or start over with "
+                "--rerun where the restart cannot mend it)",
                 first, r->results_temporary, c->path, r->outdir);
         else if ((rc == GSN_OK || rc == GSN_ERR_NUMERICAL ||
                   rc == GSN_ERR_INTERRUPTED || rc == GSN_ERR_MEMORY ||
