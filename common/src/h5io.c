@@ -41,14 +41,13 @@ static herr_t h5_checksum_walk(unsigned n, const H5E_error2_t *error,
 {
     (void)n;
     int *found = data;
-    if (error->desc &&
-        (strstr(error->desc, "checksum") || strstr(error->desc, "Fletcher32")))
+    if (error->desc && strstr(error->desc, "checksum"))
         *found = 1;
     return 0;
 }
 
-/* 1 when the HDF5 call that just failed found a checksum that does not
- * match (a dataset's Fletcher32, or the metadata's own). */
+/* 1 when the HDF5 call that just failed found a metadata checksum that
+ * does not match (the data's own is h5_data_checksum's). */
 static int h5_failure_checksum(void)
 {
     int found = 0;
@@ -99,11 +98,11 @@ int gsn_h5_group_open(hid_t loc, const char *path, const char *what,
     char file[256];
     h5_file_name(loc, file, sizeof file);
     *group = H5Gopen2(loc, path, H5P_DEFAULT);
-    GSN_CHECK(*group >= 0, h5_failure_checksum() ? GSN_ERR_IO : GSN_ERR_INPUT,
+    int damaged = *group < 0 && h5_failure_checksum();
+    GSN_CHECK(*group >= 0, damaged ? GSN_ERR_IO : GSN_ERR_INPUT,
               "%s: %s '%s' %s", file, what, path,
-              h5_failure_checksum() ? "cannot be read: " H5_DAMAGED
-                                    : "is missing (the file was cut short or "
-                                      "damaged)");
+              damaged ? "cannot be read: " H5_DAMAGED
+                      : "is missing (the file was cut short or damaged)");
     return GSN_OK;
 }
 
@@ -415,7 +414,6 @@ int gsn_h5_flush(hid_t file)
                            "cannot write to the file");
 }
 
-/* Opens a dataset and checks its type class, rank and columns. */
 /* The checksum of a dataset's data as it is in memory (zlib's CRC-32 of
  * every byte, a string's to its fixed size): written beside the data as an
  * attribute of the dataset, whose header the 1.8 format checksums too; a
@@ -447,6 +445,7 @@ static int h5_checksum_write(hid_t dataset, const struct gsn_dataset_info *info,
                                 &value);
 }
 
+/* Opens a dataset and checks its type class, rank and columns. */
 static int h5_dataset_open(hid_t loc, const struct gsn_dataset_info *info,
                            hid_t *dataset, size_t *rows)
 {
@@ -508,31 +507,26 @@ int gsn_h5_rows(hid_t loc, const struct gsn_dataset_info *info, size_t *rows)
     return GSN_OK;
 }
 
-/* The data just read against the checksum written with it. */
-static int h5_checksum_check(hid_t loc, const struct gsn_dataset_info *info,
-                             size_t rows, const void *data)
+/* The data just read from dataset (of file) against the checksum written
+ * with it. */
+static int h5_checksum_check(hid_t dataset, const char *file,
+                             const struct gsn_dataset_info *info, size_t rows,
+                             const void *data)
 {
-    char file[256];
-    hid_t dataset = H5Dopen2(loc, info->path, H5P_DEFAULT);
     unsigned stored = 0;
-    int found = dataset >= 0 && H5Aexists(dataset, GSN_ATTR_CHECKSUM) > 0;
+    int found = H5Aexists(dataset, GSN_ATTR_CHECKSUM) > 0;
     int damaged = !found && h5_failure_checksum();
-    int rc = found ? h5_attr_read_scalar(dataset, GSN_ATTR_CHECKSUM,
-                                         H5T_NATIVE_UINT, H5T_INTEGER, &stored)
-                   : GSN_OK;
-    if (dataset >= 0)
-        H5Dclose(dataset);
-    GSN_CALL(rc);
-    GSN_CHECK(found, GSN_ERR_IO, "%s: dataset '%s' %s",
-              h5_file_name(loc, file, sizeof file), info->path,
+    if (found)
+        GSN_CALL(h5_attr_read_scalar(dataset, GSN_ATTR_CHECKSUM,
+                                     H5T_NATIVE_UINT, H5T_INTEGER, &stored));
+    GSN_CHECK(found, GSN_ERR_IO, "%s: dataset '%s' %s", file, info->path,
               damaged ? "cannot be checked: " H5_DAMAGED
                       : "has no checksum: the file is damaged or not "
                         "geoscni's; make it again with the stage that wrote "
                         "it");
     GSN_CHECK(h5_data_checksum(info->type, rows * (size_t)info->columns,
                                data) == stored,
-              GSN_ERR_IO, "%s: dataset '%s': " H5_DAMAGED,
-              h5_file_name(loc, file, sizeof file), info->path);
+              GSN_ERR_IO, "%s: dataset '%s': " H5_DAMAGED, file, info->path);
     return GSN_OK;
 }
 
@@ -555,15 +549,20 @@ int gsn_h5_read(hid_t loc, const struct gsn_dataset_info *info, size_t rows,
     }
     if (owned >= 0)
         H5Tclose(owned);
+    h5_file_name(loc, file, sizeof file);
+    int rc = GSN_OK;
+    if (!ok)
+        rc = gsn_error_raise(GSN_ERR_INPUT, __FILE__, __LINE__, __func__,
+                             "%s: dataset '%s' has %zu rows, expected %zu",
+                             file, info->path, stored_rows, rows);
+    else if (status < 0)
+        rc = gsn_error_raise(GSN_ERR_IO, __FILE__, __LINE__, __func__,
+                             "%s: cannot read dataset '%s'%s", file, info->path,
+                             damaged ? ": " H5_DAMAGED : "");
+    else
+        rc = h5_checksum_check(dataset, file, info, rows, data);
     H5Dclose(dataset);
-    GSN_CHECK(ok, GSN_ERR_INPUT, "%s: dataset '%s' has %zu rows, expected %zu",
-              h5_file_name(loc, file, sizeof file), info->path, stored_rows,
-              rows);
-    GSN_CHECK(status >= 0, GSN_ERR_IO, "%s: cannot read dataset '%s'%s",
-              h5_file_name(loc, file, sizeof file), info->path,
-              damaged ? ": " H5_DAMAGED : "");
-    GSN_CALL(h5_checksum_check(loc, info, rows, data));
-    return GSN_OK;
+    return rc;
 }
 
 /* Overwrites an existing dataset of the same shape in place (checkpoints
