@@ -877,6 +877,7 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
     GSN_CALL_GOTO(gsn_model_write(path, &m, c), rc, done);
     double t_write = omp_get_wtime() - t1;
     if (!options->quiet) {
+        int reproducible = pre_reproducible(c, options);
         printf("pre: %d particles (estimate %.0f), %d tetrahedra, %d facets "
                "(%d quadrature points), %d cells cut by the boundary (%d by "
                "tetrahedra)\n",
@@ -890,12 +891,10 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
         printf("pre: time %.2f s: meshing %.2f (gmsh's %s%s), Delaunay %.2f, "
                "cells %.2f, writing %.2f -> %s\n",
                omp_get_wtime() - t0, t_mesh,
-               gsn_mesher_name(pre_reproducible(c, options)
-                                   ? GSN_MESHER_DELAUNAY
-                                   : GSN_MESHER_HXT),
-               pre_reproducible(c, options)
-                   ? ": the same particles on every run"
-                   : ", not reproducible: particles.mesher",
+               gsn_mesher_name(reproducible ? GSN_MESHER_DELAUNAY
+                                            : GSN_MESHER_HXT),
+               reproducible ? ": the same particles on every run"
+                            : ", not reproducible: particles.mesher",
                check.time_delaunay, check.time_cells, t_write, path);
         GSN_CALL_GOTO(pre_refine_report(c, &m), rc, done);
     }

@@ -147,6 +147,12 @@ void gsn_reference_destroy(struct gsn_reference **handle)
     *handle = NULL;
 }
 
+long gsn_reference_retry_steps(const struct gsn_reference *r)
+{
+    int run = r->deferred_run < 16 ? r->deferred_run : 16;
+    return (long)r->c->reference_min_steps << run;
+}
+
 enum gsn_reference_reason gsn_reference_due(const struct gsn_reference *r)
 {
     const struct gsn_case *c = r->c;
@@ -154,9 +160,7 @@ enum gsn_reference_reason gsn_reference_due(const struct gsn_reference *r)
     if (!c->reference_update || e->step - r->step < c->reference_min_steps)
         return GSN_REFERENCE_NOT_DUE;
     if (r->deferred_run > 0 &&
-        e->step - r->attempt_step <
-            (long)c->reference_min_steps
-                << (r->deferred_run < 16 ? r->deferred_run : 16))
+        e->step - r->attempt_step < gsn_reference_retry_steps(r))
         return GSN_REFERENCE_NOT_DUE;
     if (e->distortion_strain > c->reference_strain)
         return GSN_REFERENCE_STRAIN;

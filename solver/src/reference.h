@@ -120,6 +120,10 @@ void gsn_reference_destroy(struct gsn_reference **r);
  * reference_update), and why. */
 enum gsn_reference_reason gsn_reference_due(const struct gsn_reference *r);
 
+/* Steps from the last deferred attempt to the next: min_steps times
+ * 2^(deferred updates in a row), the power at most 16. */
+long gsn_reference_retry_steps(const struct gsn_reference *r);
+
 /* Takes the current configuration as the reference (see above); report
  * (may be NULL) gets what it did. Where the new discretization fails its
  * checks the update is deferred (report->deferred, with the cause): the

@@ -640,9 +640,14 @@ done:
     return rc;
 }
 
-/* A frame and its history row; a checkpoint with it at the end of the run
- * and when CHECKPOINT_INTERVAL seconds of wall time have passed since the
- * last one (a restart from any checkpoint gives the same bits). */
+/* A stop that --restart continues (a signal, a full disk): the checkpoint
+ * of this step, and the results marked interrupted. */
+static int checkpoint_for_restart(struct run *r)
+{
+    GSN_CALL(write_checkpoint(r));
+    return gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_INTERRUPTED, 1);
+}
+
 /* The checkpoint's mark of a frame due at its step but not written (a
  * stop for want of room). */
 static int set_frame_due(struct run *r, int due)
@@ -688,10 +693,8 @@ static int check_room(struct run *r)
     if (room >= need)
         return GSN_OK;
     const struct gsn_explicit *e = r->reference->loop;
-    GSN_CALL(write_checkpoint(r));
+    GSN_CALL(checkpoint_for_restart(r));
     GSN_CALL(set_frame_due(r, 1));
-    GSN_CALL(
-        gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_INTERRUPTED, 1));
     GSN_CALL(gsn_h5_flush(r->results));
     r->stopped_whole = 1;
     return gsn_error_raise(
@@ -704,6 +707,9 @@ static int check_room(struct run *r)
         r->c->path, r->outdir);
 }
 
+/* A frame and its history row; a checkpoint with it at the end of the run
+ * and when CHECKPOINT_INTERVAL seconds of wall time have passed since the
+ * last one (a restart from any checkpoint gives the same bits). */
 static int write_output(struct run *r, int final)
 {
     GSN_CALL(check_room(r));
@@ -928,9 +934,7 @@ static int stop_for_signal(struct run *r)
 {
     const struct gsn_explicit *e = r->reference->loop;
     int signal_number = stop_signal;
-    GSN_CALL(write_checkpoint(r));
-    GSN_CALL(
-        gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_INTERRUPTED, 1));
+    GSN_CALL(checkpoint_for_restart(r));
     return gsn_error_raise(
         GSN_ERR_INTERRUPTED, __FILE__, __LINE__, __func__,
         "%s at step %ld of %ld, t = %.6g s: the checkpoint of this step is "
@@ -980,8 +984,7 @@ static int update_reference(struct run *r)
                     "of step %ld and tries again after %ld steps\n",
                     isatty(STDERR_FILENO) ? "\r" : "", e->step, e->time,
                     gsn_reference_reason_name(reason), report.cause, ref->step,
-                    (long)r->c->reference_min_steps
-                        << (ref->deferred_run < 16 ? ref->deferred_run : 16));
+                    gsn_reference_retry_steps(ref));
             fflush(stderr);
         }
         return GSN_OK;
@@ -1534,6 +1537,18 @@ static int setup_loads(struct run *r)
     return GSN_OK;
 }
 
+/* The integration as the messages name it: "scni", "scni + nsni", ... */
+static const char *method_text(const struct gsn_case *c, char *text,
+                               size_t size)
+{
+    snprintf(text, size, "%s%s%s", gsn_integration_name(c->integration),
+             c->stabilization != GSN_STABILIZATION_NONE ? " + " : "",
+             c->stabilization != GSN_STABILIZATION_NONE
+                 ? gsn_stabilization_name(c->stabilization)
+                 : "");
+    return text;
+}
+
 /* The solve's peak memory (bytes), before it allocates: fitted to the peak
  * resident size of Slope I at 4,886 and 52,054 particles (Delaunay, linear
  * basis, support 1.5; docs/solver.md, "Memory"): 80 MB, and per particle
@@ -1568,6 +1583,7 @@ static double memory_estimate(const struct gsn_case *c,
 static int check_memory(const struct run *r)
 {
     const char *source = NULL;
+    char method[64];
     double need = memory_estimate(r->c, &r->model);
     double available = gsn_memory_available(&source);
     if (!r->options->quiet)
@@ -1577,15 +1593,11 @@ static int check_memory(const struct run *r)
     GSN_CHECK(available <= 0.0 || need <= available || r->options->force,
               GSN_ERR_INPUT,
               "%s: this case needs about %.0f MB of memory (%d particles, "
-              "%s%s%s%s), but %.0f MB are available (%s): use a larger "
+              "%s%s), but %.0f MB are available (%s): use a larger "
               "particles.spacing or a cheaper integration, free memory, or "
               "--force to try anyway",
               r->c->path, need / 1e6, r->model.particle_count,
-              gsn_integration_name(r->c->integration),
-              r->c->stabilization != GSN_STABILIZATION_NONE ? " + " : "",
-              r->c->stabilization != GSN_STABILIZATION_NONE
-                  ? gsn_stabilization_name(r->c->stabilization)
-                  : "",
+              method_text(r->c, method, sizeof method),
               r->c->reference_update ? ", reference updates" : "",
               available / 1e6, source);
     return GSN_OK;
@@ -1613,17 +1625,14 @@ static int run_setup(struct run *r)
                                                   "equivalent_plastic_strain");
     GSN_CALL(gsn_frame_allocate(&r->frame, r->model.particle_count));
     GSN_CALL(choose_time_step(r));
+    char method[64];
     if (!r->options->quiet)
         printf("solver: %d particles (gmsh's %s mesh), %d integration "
-               "points, %s%s%s, %.1f MB of shape functions, set up in %.2f s, "
+               "points, %s, %.1f MB of shape functions, set up in %.2f s, "
                "%ld steps\n",
                r->model.particle_count, gsn_mesher_name(c->mesher),
                r->reference->quadrature->point_count,
-               gsn_integration_name(c->integration),
-               c->stabilization != GSN_STABILIZATION_NONE ? " + " : "",
-               c->stabilization != GSN_STABILIZATION_NONE
-                   ? gsn_stabilization_name(c->stabilization)
-                   : "",
+               method_text(c, method, sizeof method),
                gsn_quadrature_bytes(r->reference->quadrature) / 1e6,
                now_seconds() - t0, r->total_steps);
     if (r->reference->quadrature->held_fallback_count > 0)
