@@ -17,6 +17,14 @@ rounds=3
     echo "FAIL: the run of box.yaml failed"
     exit 1
 }
+# made LABEL STATUS_FILE LOG FOLDER: exit status 0, the energy plot and
+# the damage pictures in FOLDER
+made() {
+    status=$(cat "$2")
+    [ "$status" = 0 ] || fail "$1: status $status: $(head -c 300 "$3")"
+    [ -s "$4/plots/energy.png" ] && ls "$4/pictures/"damage_*.png >/dev/null 2>&1 ||
+        fail "$1: pictures or plots missing"
+}
 round=1
 while [ $round -le $rounds ]; do
     i=1
@@ -35,10 +43,7 @@ while [ $round -le $rounds ]; do
     wait
     i=1
     while [ $i -le $posts ]; do
-        status=$(cat "$out/status$i")
-        [ "$status" = 0 ] || fail "round $round, post $i: status $status: $(head -c 300 "$out/log$i")"
-        [ -s "$out/p$i/plots/energy.png" ] && ls "$out/p$i/pictures/"damage_*.png >/dev/null 2>&1 ||
-            fail "round $round, post $i: pictures or plots missing"
+        made "round $round, post $i" "$out/status$i" "$out/log$i" "$out/p$i"
         i=$((i + 1))
     done
     round=$((round + 1))
@@ -54,10 +59,7 @@ done
 wait
 i=1
 while [ $i -le $posts ]; do
-    status=$(cat "$out/run_status$i")
-    [ "$status" = 0 ] || fail "run $i: status $status: $(grep error "$out/run$i")"
-    [ -s "$out/r$i/plots/energy.png" ] && ls "$out/r$i/pictures/"damage_*.png >/dev/null 2>&1 ||
-        fail "run $i: pictures or plots missing"
+    made "run $i" "$out/run_status$i" "$out/run$i" "$out/r$i"
     i=$((i + 1))
 done
 echo "$((posts * rounds)) posts and $posts runs side by side, $failures failures"

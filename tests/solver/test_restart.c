@@ -145,14 +145,25 @@ static void check_restart_frames(const char *whole, const char *parts,
     gsn_h5_close(&file[1]);
 }
 
+/* A run's results opened (writable or not) with its last frame read into
+ * frame (allocated here; the caller frees it and closes the file); count
+ * gets the frame count. */
+static hid_t last_frame_read(const char *folder, int writable,
+                             struct gsn_frame *frame, int *count)
+{
+    int n = 0;
+    hid_t file = results_open(folder, writable, count, &n);
+    TEST_INT(gsn_frame_allocate(frame, n), GSN_OK);
+    TEST_INT(gsn_results_frame_read(file, *count - 1, frame), GSN_OK);
+    return file;
+}
+
 /* The step of a run's last frame. */
 static int last_frame_step(const char *folder)
 {
-    int count = 0, n = 0;
-    hid_t file = results_open(folder, 0, &count, &n);
+    int count = 0;
     struct gsn_frame frame;
-    TEST_INT(gsn_frame_allocate(&frame, n), GSN_OK);
-    TEST_INT(gsn_results_frame_read(file, count - 1, &frame), GSN_OK);
+    hid_t file = last_frame_read(folder, 0, &frame, &count);
     int step = frame.step;
     gsn_frame_free(&frame);
     gsn_h5_close(&file);
@@ -164,11 +175,9 @@ static int last_frame_step(const char *folder)
  * step of the last frame before it. */
 static int append_frame_after_checkpoint(const char *folder)
 {
-    int count = 0, n = 0;
-    hid_t file = results_open(folder, 1, &count, &n);
+    int count = 0;
     struct gsn_frame frame;
-    TEST_INT(gsn_frame_allocate(&frame, n), GSN_OK);
-    TEST_INT(gsn_results_frame_read(file, count - 1, &frame), GSN_OK);
+    hid_t file = last_frame_read(folder, 1, &frame, &count);
     int step = frame.step;
     frame.time *= (double)(step + 3) / step;
     frame.step = step + 3;
