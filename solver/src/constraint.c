@@ -683,6 +683,87 @@ done:
     return rc;
 }
 
+/* The pattern of S_c for the n held particles of one component: J and K
+ * couple where |X_J - X_K|_inf < 2 a_K, the held particles' kernels grown
+ * twice (gsn_rk_neighbours); its entries and KLU's symbolic estimate of
+ * the factors' (AMD ordering, as factorize uses). */
+static int pattern_size_estimate(int n, const double *position,
+                                 const double *spacing, double support,
+                                 double *entries, double *factor_entries)
+{
+    struct gsn_rk *rk = NULL;
+    int *offset = calloc((size_t)n + 1, sizeof(int)), *index = NULL;
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(offset, rc, GSN_ERR_MEMORY, done, "out of memory");
+    GSN_CALL_GOTO(gsn_rk_create(n, position, spacing, 2.0 * support, 1, &rk),
+                  rc, done);
+    for (int j = 0; j < n; ++j)
+        offset[j + 1] = offset[j] + gsn_rk_neighbours(
+                                        rk, position + 3 * (size_t)j, 0, NULL);
+    index = malloc(sizeof(int) * ((size_t)offset[n] + 1));
+    GSN_CHECK_GOTO(index, rc, GSN_ERR_MEMORY, done, "out of memory");
+    for (int j = 0; j < n; ++j)
+        gsn_rk_neighbours(rk, position + 3 * (size_t)j,
+                          offset[j + 1] - offset[j], index + offset[j]);
+    klu_common common;
+    klu_defaults(&common);
+    common.btf = 0;
+    klu_symbolic *symbolic = klu_analyze(n, offset, index, &common);
+    GSN_CHECK_GOTO(symbolic, rc, GSN_ERR_MEMORY, done,
+                   "the boundary matrix's pattern (%d particles) could not "
+                   "be analysed (KLU status %d)",
+                   n, common.status);
+    *entries = offset[n];
+    *factor_entries = symbolic->lnz + symbolic->unz;
+    klu_free_symbolic(&symbolic, &common);
+done:
+    gsn_rk_destroy(&rk);
+    free(offset);
+    free(index);
+    return rc;
+}
+
+int gsn_constraints_size_estimate(const struct gsn_model *m,
+                                  const struct gsn_case *c, double entries[3],
+                                  double factor_entries[3])
+{
+    size_t n = (size_t)m->particle_count;
+    int *facet_mask = NULL, *particle_mask = NULL;
+    double *spacing = malloc(sizeof(double) * (n + 1));
+    double *held_spacing = malloc(sizeof(double) * (n + 1));
+    double *held_position = malloc(sizeof(double) * 3 * (n + 1));
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(spacing && held_spacing && held_position, rc, GSN_ERR_MEMORY,
+                   done, "out of memory");
+    GSN_CALL_GOTO(gsn_constraints_held(m, c, NULL, &facet_mask, &particle_mask),
+                  rc, done);
+    GSN_CALL_GOTO(gsn_rk_spacing_from_facets(m, 0.0, spacing), rc, done);
+    for (int k = 0; k < 3; ++k) {
+        int count = 0;
+        for (size_t p = 0; p < n; ++p)
+            if (particle_mask[p] >> k & 1) {
+                held_spacing[count] = spacing[p];
+                memcpy(held_position + 3 * (size_t)count, m->position + 3 * p,
+                       3 * sizeof(double));
+                ++count;
+            }
+        entries[k] = factor_entries[k] = 0.0;
+        if (count > 0)
+            GSN_CALL_GOTO(pattern_size_estimate(count, held_position,
+                                                held_spacing, c->kernel_support,
+                                                &entries[k],
+                                                &factor_entries[k]),
+                          rc, done);
+    }
+done:
+    free(facet_mask);
+    free(particle_mask);
+    free(spacing);
+    free(held_spacing);
+    free(held_position);
+    return rc;
+}
+
 double gsn_ramp_factor(double ramp, enum gsn_constraint_field kind, double t)
 {
     if (ramp <= 0.0 || t >= ramp)

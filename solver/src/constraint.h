@@ -131,6 +131,15 @@ int gsn_constraints_held(const struct gsn_model *m, const struct gsn_case *c,
                          const unsigned *released, int **facet_mask,
                          int **particle_mask);
 
+/* The sizes of S_c = C_c M^-1 C_c^T and of its LU factors, estimated
+ * before any shape function exists (for the memory the solve states):
+ * per component, entries[k] counts the pairs of held particles J, K with
+ * |X_J - X_K|_inf < 2 a (their kernels may share a particle: the pattern
+ * of S_c), and factor_entries[k] the fill of its factors. */
+int gsn_constraints_size_estimate(const struct gsn_model *m,
+                                  const struct gsn_case *c, double entries[3],
+                                  double factor_entries[3]);
+
 /* 1 if component k of particle I is constrained. */
 int gsn_constraints_is_constrained(const struct gsn_constraints *constraints,
                                    int particle, int component);

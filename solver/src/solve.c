@@ -1549,18 +1549,22 @@ static const char *method_text(const struct gsn_case *c, char *text,
     return text;
 }
 
-/* The solve's peak memory (bytes), before it allocates: fitted to the peak
- * resident size of Slope I at 4,886 and 52,054 particles (Delaunay, linear
- * basis, support 1.5; docs/solver.md, "Memory"): 80 MB, and per particle
- * 7.3 KB with SCNI or DNI, 12.7 KB with NSNI, 30.6 KB with MSCNI, or per
- * Gauss point 2.5 KB. The rows of the shape functions grow with the
+/* The solve's peak memory (bytes), before it allocates: a fit to the peak
+ * resident size of 8 bodies (402 to 52,054 particles, slabs, slopes, a box;
+ * docs/solver.md, "Memory"; within 7% with SCNI): 80 MB, per particle
+ * 3.5 KB with SCNI or DNI, 8.4 KB with NSNI, 26.5 KB with MSCNI, or per
+ * Gauss point 2.5 KB; and the exact boundary values' matrices, 24 bytes per
+ * entry of S_c = C M^-1 C^T (two copies) and 40 per entry of its LU factors
+ * (KLU's and the copy the steps read), both counted on their pattern
+ * (gsn_constraints_size_estimate): a slab whose faces are all held has
+ * most of its memory there. The rows of the shape functions grow with the
  * support's volume (and, taken as twice, with the quadratic basis);
  * reference updates hold two discretizations at once (1.93 times
  * measured). */
-static double memory_estimate(const struct gsn_case *c,
-                              const struct gsn_model *m)
+static int memory_estimate(const struct gsn_case *c, const struct gsn_model *m,
+                           double *bytes)
 {
-    double points = 0.0, per_point = 7.3e3;
+    double points = 0.0, per_point = 3.5e3;
     if (c->integration == GSN_INTEGRATION_GAUSS) {
         points = (double)m->tetrahedron_count * c->gauss_points *
                  c->gauss_points * c->gauss_points;
@@ -1568,15 +1572,20 @@ static double memory_estimate(const struct gsn_case *c,
     } else {
         points = m->particle_count;
         if (c->stabilization == GSN_STABILIZATION_NSNI)
-            per_point = 12.7e3;
+            per_point = 8.4e3;
         else if (c->stabilization == GSN_STABILIZATION_MSCNI)
-            per_point = 30.6e3;
+            per_point = 26.5e3;
     }
+    double entries[3], factor_entries[3], held = 0.0;
+    GSN_CALL(gsn_constraints_size_estimate(m, c, entries, factor_entries));
+    for (int k = 0; k < 3; ++k)
+        held += 24.0 * entries[k] + 40.0 * factor_entries[k];
     double support = c->kernel_support / 1.5;
     double scale = fmax(1.0, support * support * support) *
-                   (c->kernel_basis_order == 2 ? 2.0 : 1.0) *
-                   (c->reference_update ? 2.0 : 1.0);
-    return 80e6 + points * per_point * scale;
+                   (c->kernel_basis_order == 2 ? 2.0 : 1.0);
+    *bytes = (80e6 + points * per_point * scale + held) *
+             (c->reference_update ? 2.0 : 1.0);
+    return GSN_OK;
 }
 
 /* States the memory need and refuses a case that would not fit. */
@@ -1584,7 +1593,8 @@ static int check_memory(const struct run *r)
 {
     const char *source = NULL;
     char method[64];
-    double need = memory_estimate(r->c, &r->model);
+    double need = 0.0;
+    GSN_CALL(memory_estimate(r->c, &r->model, &need));
     double available = gsn_memory_available(&source);
     if (!r->options->quiet)
         printf("solver: about %.0f MB of memory needed (%.0f MB available: "

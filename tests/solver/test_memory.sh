@@ -1,10 +1,15 @@
 #!/bin/sh
 # Issue 19, point 5: solve states its memory need before it allocates and
 # refuses a case that would not fit, with the numbers. The coarse Slope I
-# (4,886 particles) for 20 steps, with the slope cases' NSNI and with MSCNI:
-# - the stated need lies within 25% of the peak resident size measured by
-#   /usr/bin/time (the estimate is a fit to Slope I's, docs/solver.md
-#   "Memory"; the rest is the allocator's and the libraries' slack);
+# (4,886 particles) for 20 steps, with the slope cases' NSNI and with MSCNI,
+# and the thin slab of the deep-penetration footing (7,903 particles, two
+# spacings thick, nearly all of them on held faces, whose boundary matrices
+# take most of its memory):
+# - the stated need lies within 15% of the peak resident size measured by
+#   /usr/bin/time (the estimate is a fit to 8 bodies, within 7% of them with
+#   SCNI, docs/solver.md "Memory"; the rest is the allocator's and the
+#   libraries' slack; before the boundary matrices were counted the slab's
+#   need was stated 45% short);
 # - under an address-space limit (ulimit -v) that leaves less room than the
 #   need, solve ends with exit 2 before it allocates, naming the case, the
 #   need and the limit, and writes no results.
@@ -19,15 +24,21 @@ make_case() { # NAME INTEGRATION
 }
 make_case nsni "{method: scni, stabilization: nsni, coefficient: 0.1}"
 make_case mscni "{method: scni, stabilization: mscni}"
+sed -e "s|^geometry: *|geometry: $root/geometries/|" \
+    -e "s|end: [0-9.]*|end: 0.03|" -e "s|ramp: [0-9.]*|ramp: 0.01|" \
+    "$root/geometries/footing_penetration.yaml" >"$out/slab.yaml"
 "$geoscni" pre "$out/nsni.yaml" -o "$out/m" -q || fail "pre failed"
-for name in nsni mscni; do
-    /usr/bin/time -f "peak %M KB" "$geoscni" solve "$out/$name.yaml" -o "$out/m" \
+"$geoscni" pre "$out/slab.yaml" -o "$out/s" -q || fail "pre of the slab failed"
+for name in nsni mscni slab; do
+    folder=$out/m
+    [ $name = slab ] && folder=$out/s
+    /usr/bin/time -f "peak %M KB" "$geoscni" solve "$out/$name.yaml" -o "$folder" \
         >"$out/$name.log" 2>&1 || fail "$name: solve failed: $(tail -3 "$out/$name.log")"
     need=$(sed -n 's/^solver: about \([0-9]*\) MB of memory needed.*/\1/p' "$out/$name.log")
     peak=$(sed -n 's/^peak \([0-9]*\) KB$/\1/p' "$out/$name.log")
     echo "$name: need stated $need MB, peak resident $(awk -v k="${peak:-0}" 'BEGIN { printf "%.0f", k * 1.024 / 1000 }') MB"
-    awk -v n="${need:-0}" -v k="${peak:-0}" 'BEGIN { p = k * 1024 / 1e6; exit !(n > 0 && n <= 1.25 * p && n >= 0.75 * p) }' ||
-        fail "$name: the stated need ($need MB) is not within 25% of the peak ($peak KB)"
+    awk -v n="${need:-0}" -v k="${peak:-0}" 'BEGIN { p = k * 1024 / 1e6; exit !(n > 0 && n <= 1.15 * p && n >= 0.85 * p) }' ||
+        fail "$name: the stated need ($need MB) is not within 15% of the peak ($peak KB)"
 done
 rm -f "$out/m/results.h5" "$out/m/history.csv"
 (ulimit -v 300000 && exec "$geoscni" solve "$out/mscni.yaml" -o "$out/m") >"$out/limited.log" 2>&1
