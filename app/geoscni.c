@@ -1,5 +1,7 @@
-/* geoscni: the command-line program. Subcommands pre, solve, post, run and
- * check; exit status 0 ok, 2 bad input, 3 numerical failure (DESIGN.md). */
+/* geoscni: the command-line program. Subcommands pre, solve, post, run,
+ * converge and check; exit status 0 ok, 2 bad input, 3 numerical failure
+ * (DESIGN.md). */
+#include "app.h"
 #include "geoscni/case.h"
 #include "geoscni/error.h"
 #include "geoscni/files.h"
@@ -19,15 +21,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-enum { MAX_CASES = 64 };
-
-struct arguments {
-    const char *cases[MAX_CASES];
-    int case_count;
-    const char *outdir;
-    int force, restart, quiet, no_pictures, threads, rerun, verbose;
-};
-
 /* The options: each command takes -h and -q, and those of its mask. */
 enum option_bit {
     OPTION_OUTPUT = 1 << 0,
@@ -39,6 +32,11 @@ enum option_bit {
     OPTION_HELP = 1 << 6,
     OPTION_QUIET = 1 << 7,
     OPTION_VERBOSE = 1 << 8,
+    OPTION_LEVELS = 1 << 9,
+    OPTION_RATIO = 1 << 10,
+    OPTION_QUANTITY = 1 << 11,
+    OPTION_TOLERANCE = 1 << 12,
+    OPTION_FINEST = 1 << 13,
     OPTION_GENERAL = OPTION_HELP | OPTION_QUIET | OPTION_VERBOSE /* every
                                                                    command's */
 };
@@ -57,6 +55,11 @@ static const struct option {
     {NULL, "--restart", OPTION_RESTART, NULL},
     {NULL, "--rerun", OPTION_RERUN, NULL},
     {NULL, "--no-pictures", OPTION_NO_PICTURES, NULL},
+    {NULL, "--levels", OPTION_LEVELS, "a number"},
+    {NULL, "--ratio", OPTION_RATIO, "a number"},
+    {NULL, "--quantity", OPTION_QUANTITY, "a quantity"},
+    {NULL, "--tol", OPTION_TOLERANCE, "a fraction"},
+    {NULL, "--finest", OPTION_FINEST, "a spacing in m"},
 };
 enum { OPTION_COUNT = sizeof command_options / sizeof command_options[0] };
 
@@ -226,7 +229,7 @@ static int command_check(const struct arguments *a)
 /* Creates outdir and takes its lock (files.h, gsn_folder_lock): a second
  * geoscni that would write it is refused. The lock is held until the
  * process ends, so for the whole command. */
-static int lock_outdir(const char *outdir)
+int app_lock_outdir(const char *outdir)
 {
     int lock = -1;
     GSN_CALL(gsn_folder_prepare(outdir));
@@ -241,7 +244,7 @@ static int command_pre(const struct arguments *a)
     GSN_CALL(gsn_case_load(a->cases[0], &c));
     gsn_case_warn_implausible(&c, stderr);
     const char *outdir = outdir_for(a, a->cases[0], buffer, sizeof buffer);
-    GSN_CALL(lock_outdir(outdir));
+    GSN_CALL(app_lock_outdir(outdir));
     GSN_CALL(run_pre(&c, outdir, a));
     return GSN_OK;
 }
@@ -253,7 +256,7 @@ static int command_solve(const struct arguments *a)
     GSN_CALL(gsn_case_load(a->cases[0], &c));
     gsn_case_warn_implausible(&c, stderr);
     const char *outdir = outdir_for(a, a->cases[0], buffer, sizeof buffer);
-    GSN_CALL(lock_outdir(outdir));
+    GSN_CALL(app_lock_outdir(outdir));
     GSN_CALL(run_solve(&c, outdir, a, a->restart));
     return GSN_OK;
 }
@@ -364,10 +367,8 @@ static int run_skipped(const struct arguments *a, const char *stage,
     return 1;
 }
 
-/* One case through pre, solve and post; after a numerical failure the
- * frames written before it are post-processed, then the failure returned. */
-static int run_case(const struct arguments *a, const struct gsn_case *c,
-                    const char *outdir)
+int app_run_case(const struct arguments *a, const struct gsn_case *c,
+                 const char *outdir, int with_post)
 {
     if (!run_skipped(a, "pre", c, outdir))
         GSN_CALL(run_pre(c, outdir, a));
@@ -384,7 +385,7 @@ static int run_case(const struct arguments *a, const struct gsn_case *c,
     int rc = run_skipped(a, "solve", c, outdir)
                  ? GSN_OK
                  : run_solve(c, outdir, a, restart);
-    if (rc == GSN_ERR_NUMERICAL) {
+    if (rc == GSN_ERR_NUMERICAL && with_post) {
         /* Show what the run reached before it failed, then fail. */
         fprintf(stderr, "geoscni run: ");
         gsn_error_print_user(stderr, a->verbose);
@@ -401,7 +402,7 @@ static int run_case(const struct arguments *a, const struct gsn_case *c,
                   c->path, outdir);
     }
     GSN_CALL(rc);
-    if (!run_skipped(a, "post", c, outdir))
+    if (with_post && !run_skipped(a, "post", c, outdir))
         GSN_CALL(run_post(outdir, a));
     return GSN_OK;
 }
@@ -429,12 +430,12 @@ static int command_run(const struct arguments *a)
                       a->cases[j], a->cases[i], outdirs[i]);
     }
     for (int i = 0; i < a->case_count; ++i)
-        GSN_CALL(lock_outdir(outdirs[i]));
+        GSN_CALL(app_lock_outdir(outdirs[i]));
     /* A case that fails does not stop the others, except an interrupt. */
     int first_failure = GSN_OK, failed = 0, ran = 0;
     for (int i = 0; i < a->case_count; ++i, ++ran) {
         const char *outdir = outdirs[i];
-        int rc = run_case(a, &cases[i], outdir);
+        int rc = app_run_case(a, &cases[i], outdir, 1);
         if (rc == GSN_OK)
             continue;
         if (a->case_count == 1)
@@ -493,6 +494,32 @@ static const struct command commands[] = {
      command_run, 1, MAX_CASES, "file",
      OPTION_OUTPUT | OPTION_RESTART | OPTION_FORCE | OPTION_NO_PICTURES |
          OPTION_RERUN | OPTION_THREADS},
+    {"converge",
+     "geoscni converge CASE.yaml [-o OUTDIR] [--levels N] [--ratio R] "
+     "[--finest H] [--quantity Q] [--tol T]",
+     "run the case at several spacings and give one number's converged "
+     "value with its estimated error (Richardson), the order, and the "
+     "coarsest spacing within a tolerance: OUTDIR/converge.csv and "
+     "converge.png",
+     "  -o, --output DIR output folder, a folder per level inside (default: "
+     "CASE_converge)\n"
+     "  --levels N       number of spacings, 3 to 8 (default 3)\n"
+     "  --ratio R        each level's spacing over the next finer one's "
+     "(default 1.5)\n"
+     "  --finest H       the finest level's particles.spacing in m (default: "
+     "the case's; refinement zones scale with it)\n"
+     "  --quantity Q     peak_force[:SURFACE] (default: on the entry the "
+     "case moves), force_at:SETTLEMENT[:SURFACE] (m), peak_pressure or "
+     "pressure_at (the force over the surface's area), "
+     "displacement_at:X,Y,Z (m, at the end)\n"
+     "  --tol T          the error asked for: a fraction or a percentage "
+     "(default 2%)\n"
+     "  --force          as for pre and solve\n"
+     "  --no-pictures    no chart\n" THREADS_HELP,
+     command_converge, 1, 1, "file",
+     OPTION_OUTPUT | OPTION_FORCE | OPTION_NO_PICTURES | OPTION_THREADS |
+         OPTION_LEVELS | OPTION_RATIO | OPTION_QUANTITY | OPTION_TOLERANCE |
+         OPTION_FINEST},
     {"check", "geoscni check CASE.yaml [CASE2.yaml ...]",
      "check case files (also against their geometries, meshing their "
      "surfaces) and print their resolved parameters, the particle estimate "
@@ -508,7 +535,7 @@ static void print_usage(FILE *out)
             "failure\n\nusage: geoscni COMMAND [options]\n\ncommands:\n",
             gsn_code_version());
     for (int i = 0; i < COMMAND_COUNT; ++i)
-        fprintf(out, "  %-6s %s\n", commands[i].name, commands[i].summary);
+        fprintf(out, "  %-8s %s\n", commands[i].name, commands[i].summary);
     fprintf(out, "\n  geoscni COMMAND --help   options of a command\n"
                  "  geoscni --version        versions of geoscni and its "
                  "libraries\n\nexit status: 0 success, 2 bad input, 3 "
@@ -641,6 +668,27 @@ static int parse_arguments(const struct command *command, int argc, char **argv,
             a->rerun = 1;
         } else if (o->bit == OPTION_NO_PICTURES) {
             a->no_pictures = 1;
+        } else if (o->bit == OPTION_QUANTITY) {
+            a->quantity = value;
+        } else if (o->bit & (OPTION_LEVELS | OPTION_RATIO | OPTION_TOLERANCE |
+                             OPTION_FINEST)) {
+            char *end = NULL;
+            double number = strtod(value, &end);
+            int percent = o->bit == OPTION_TOLERANCE && end && *end == '%';
+            if (end == value ||
+                (*end != '\0' && !(percent && end[1] == '\0')) ||
+                !(number > 0.0) || !isfinite(number) ||
+                (o->bit == OPTION_LEVELS && number != floor(number)))
+                return usage_error(command, "bad value '%s' of %s", value,
+                                   o->long_name);
+            if (o->bit == OPTION_LEVELS)
+                a->levels = number > 1e6 ? 1000000 : (int)number;
+            else if (o->bit == OPTION_RATIO)
+                a->ratio = number;
+            else if (o->bit == OPTION_FINEST)
+                a->finest = number;
+            else
+                a->tolerance = percent ? number / 100.0 : number;
         }
     }
     return 0;
@@ -702,7 +750,7 @@ int main(int argc, char **argv)
                            command->operand);
 
     if (!strcmp(command->name, "pre") || !strcmp(command->name, "solve") ||
-        !strcmp(command->name, "run"))
+        !strcmp(command->name, "run") || !strcmp(command->name, "converge"))
         exec_with_short_spin(argv);
     int rc = command->run(&a);
     if (rc != GSN_OK) {

@@ -1523,3 +1523,12 @@ static void write_output_economy(const struct gsn_case *c, FILE *out)
     if (c->output_mirror[0])
         fprintf(out, ", mirror: '%s'", c->output_mirror);
 }
+
+void gsn_case_scale_spacing(struct gsn_case *c, double factor)
+{
+    c->particle_spacing *= factor;
+    for (int k = 0; k < c->refinement_count; ++k)
+        c->refinements[k].spacing *= factor;
+    if (!c->time_step_auto)
+        c->time_step *= factor;
+}

@@ -183,3 +183,17 @@ int gsn_history_motion_curve(const struct gsn_history *history,
     }
     return GSN_OK;
 }
+
+int gsn_boundary_motion(const struct gsn_boundary *b, double direction[3])
+{
+    double norm = 0.0;
+    for (int j = 0; j < 3; ++j) {
+        direction[j] = b->has_velocity[j] ? b->velocity[j] : 0.0;
+        norm += direction[j] * direction[j];
+    }
+    if (!(norm > 0.0))
+        return 0;
+    for (int j = 0; j < 3; ++j)
+        direction[j] /= sqrt(norm);
+    return 1;
+}

@@ -3,6 +3,8 @@
 #ifndef GEOSCNI_POST_HISTORY_H
 #define GEOSCNI_POST_HISTORY_H
 
+#include "geoscni/case.h"
+
 enum { GSN_HISTORY_NAME_SIZE = 96 };
 
 struct gsn_history {
@@ -33,6 +35,10 @@ int gsn_history_column(const struct gsn_history *history, const char *name);
 int gsn_history_motion_curve(const struct gsn_history *history,
                              const char *name, const double direction[3],
                              double factor, double *x, double *y);
+
+/* The unit vector of a boundary entry's prescribed velocity (its moving
+ * components); 0 if it does not move. */
+int gsn_boundary_motion(const struct gsn_boundary *b, double direction[3]);
 
 /* Copies column into out (row_count values). */
 void gsn_history_copy_column(const struct gsn_history *history, int column,

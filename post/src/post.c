@@ -507,12 +507,13 @@ static int post_chart_write(const char *path, const char *title,
                             const char *x_label, const char *y_label,
                             int series_count, const char *const *names,
                             const int *counts, const double *const *x,
-                            const double *const *y)
+                            const double *const *y,
+                            const struct gsn_chart_style *style)
 {
     char temporary[GSN_PATH_SIZE];
     GSN_CALL(gsn_path_temporary(temporary, sizeof temporary, path));
     int rc = gsn_vtk_chart_write(temporary, title, x_label, y_label,
-                                 series_count, names, counts, x, y, NULL);
+                                 series_count, names, counts, x, y, style);
     if (rc == GSN_OK)
         rc = gsn_file_commit(path);
     if (rc != GSN_OK) {
@@ -533,16 +534,9 @@ static int post_load_settlement(const struct gsn_history *history,
                                 const char *case_name, const char *path,
                                 double *x, double *y, int *written)
 {
-    double direction[3] = {0.0, 0.0, 0.0}, norm = 0.0;
-    for (int j = 0; j < 3; ++j)
-        if (b->has_velocity[j]) {
-            direction[j] = b->velocity[j];
-            norm += direction[j] * direction[j];
-        }
-    if (!(norm > 0.0))
+    double direction[3];
+    if (!gsn_boundary_motion(b, direction))
         return GSN_OK; /* does not move */
-    for (int j = 0; j < 3; ++j)
-        direction[j] /= sqrt(norm);
     GSN_CALL(
         gsn_history_motion_curve(history, b->name, direction, factor, x, y));
     char title[TITLE_SIZE], x_label[TITLE_SIZE], y_label[TITLE_SIZE];
@@ -557,7 +551,7 @@ static int post_load_settlement(const struct gsn_history *history,
     const char *names[1] = {b->name};
     const double *xs[1] = {x}, *ys[1] = {y};
     GSN_CALL(post_chart_write(path, title, x_label, y_label, 1, names,
-                              &history->row_count, xs, ys));
+                              &history->row_count, xs, ys, NULL));
     ++*written;
     return GSN_OK;
 }
@@ -606,7 +600,7 @@ static int post_energies(const struct gsn_history *history,
     const double *xs[3] = {time, time, time};
     const double *ys[3] = {energy[0], energy[1], energy[2]};
     GSN_CALL(post_chart_write(path, title, "time [s]", y_label, 3, names,
-                              counts, xs, ys));
+                              counts, xs, ys, NULL));
     ++*written;
     return GSN_OK;
 }
@@ -929,6 +923,40 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
     if (pictures && !o->quiet)
         printf("post: %d pictures in %s, %d plots in %s/plots\n", picture_count,
                picture_folder, plot_count, outdir);
+    return GSN_OK;
+}
+
+int gsn_post_convergence_chart(const char *path, const char *title,
+                               int level_count, const double *cpu_seconds,
+                               const double *error_percent,
+                               double tolerance_percent)
+{
+    struct gsn_display display = {0};
+    GSN_CALL(gsn_display_open(&display));
+    if (!display.available) {
+        fprintf(stderr, "geoscni converge: no chart: %s\n", display.reason);
+        gsn_display_close(&display);
+        return GSN_OK;
+    }
+    double low = cpu_seconds[0], high = cpu_seconds[0];
+    for (int i = 1; i < level_count; ++i) {
+        low = fmin(low, cpu_seconds[i]);
+        high = fmax(high, cpu_seconds[i]);
+    }
+    const double tolerance_x[2] = {low, high};
+    const double tolerance_y[2] = {tolerance_percent, tolerance_percent};
+    const char *names[2] = {"levels: |value - converged| + its error",
+                            "tolerance"};
+    const int counts[2] = {level_count, 2};
+    const double *xs[2] = {cpu_seconds, tolerance_x};
+    const double *ys[2] = {error_percent, tolerance_y};
+    const struct gsn_chart_style style = {
+        .log_axes = 1, .markers = 1, .always_legend = 1, .legend_right = 1};
+    int rc = post_chart_write(path, title, "CPU time of the level [s]",
+                              "estimated error [%]", 2, names, counts, xs, ys,
+                              &style);
+    gsn_display_close(&display);
+    GSN_CALL(rc);
     return GSN_OK;
 }
 

@@ -193,6 +193,12 @@ void gsn_case_name(const char *path, char *out, size_t size);
  * is newer than the geometry file. */
 int gsn_case_pre_signature(const struct gsn_case *c, char *out, size_t size);
 
+/* The case at another resolution (geoscni converge): particles.spacing
+ * and every refinement's spacing times factor, and a fixed time step with
+ * them (the stable step scales with the spacing); the refinements' zones
+ * (boxes, distances, widths) are the geometry's and stay. */
+void gsn_case_scale_spacing(struct gsn_case *c, double factor);
+
 /* Writes a warning for each value that is legal but implausible for soil,
  * with the unit mistake it likely is (a density of 1.88, t/m^3 for kg/m^3;
  * moduli in kPa or MPa for Pa; swapped moduli): "warning: FILE:LINE:

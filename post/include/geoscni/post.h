@@ -22,6 +22,16 @@ int gsn_post_run(const char *outdir, const struct gsn_post_options *options);
 int gsn_post_up_to_date(const char *outdir,
                         const struct gsn_post_options *options);
 
+/* The chart of `geoscni converge` (docs/converge.md): the estimated error
+ * of each level's value (percent of the converged value) against its CPU
+ * time, both axes logarithmic, with the tolerance as a line; written to
+ * path (a PNG, atomically). Without an X display it writes nothing, says
+ * why on stderr and returns GSN_OK. */
+int gsn_post_convergence_chart(const char *path, const char *title,
+                               int level_count, const double *cpu_seconds,
+                               const double *error_percent,
+                               double tolerance_percent);
+
 /* The VTK version loaded at run time, e.g. "9.1.0". */
 const char *gsn_post_vtk_version(void);
 

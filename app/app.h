@@ -1,0 +1,35 @@
+/* What the commands of app/ share: the parsed command line, and one case
+ * through the stages. */
+#ifndef GEOSCNI_APP_H
+#define GEOSCNI_APP_H
+
+#include "geoscni/case.h"
+
+enum { MAX_CASES = 64 };
+
+struct arguments {
+    const char *cases[MAX_CASES];
+    int case_count;
+    const char *outdir;
+    int force, restart, quiet, no_pictures, threads, rerun, verbose;
+    /* converge */
+    int levels;           /* 0: the default */
+    double ratio;         /* 0: the default */
+    double tolerance;     /* relative; 0: the default */
+    double finest;        /* m; 0: the case's particles.spacing */
+    const char *quantity; /* NULL: the default */
+};
+
+/* Prepares and locks an output folder for this process. */
+int app_lock_outdir(const char *outdir);
+
+/* One case through pre, solve and (with_post) post, each skipped where its
+ * output is up to date; after a numerical failure the frames written before
+ * it are post-processed (with_post), then the failure returned. */
+int app_run_case(const struct arguments *a, const struct gsn_case *c,
+                 const char *outdir, int with_post);
+
+/* geoscni converge (app/converge.c) */
+int command_converge(const struct arguments *a);
+
+#endif

@@ -1,0 +1,111 @@
+/* The convergence estimate (convergence.h) on sequences computed by hand:
+ * exact power laws give their order and limit to rounding; the published
+ * example of Celik et al. (2008), Table 1, to the digits printed there;
+ * oscillating, diverging and order-changing sequences are flagged, with the
+ * finest value and the cautious error. */
+#include "geoscni/convergence.h"
+#include "geoscni/error.h"
+#include "testing.h"
+
+#include <string.h>
+
+/* phi(h) = limit + c h^p at the given spacings (finest first) */
+static void power_law(int n, const double *h, double limit, double c, double p,
+                      double *phi)
+{
+    for (int i = 0; i < n; ++i)
+        phi[i] = limit + c * pow(h[i], p);
+}
+
+int main(void)
+{
+    test_begin();
+    struct gsn_convergence c;
+
+    /* Constant ratio 1.5, second order: exact to rounding (a few ulps of
+     * the values, amplified by 1 / (r^p - 1) = 0.8). */
+    double h[4] = {1.0, 1.5, 2.25, 3.375}, phi[4];
+    power_law(3, h, 10.0, 2.0, 2.0, phi);
+    TEST_INT(gsn_convergence_estimate(3, h, phi, &c), GSN_OK);
+    TEST_TRUE(c.trusted);
+    TEST_NEAR(c.order, 2.0, 1e-12);
+    TEST_NEAR(c.extrapolated, 10.0, 1e-13);
+    /* the error is 1.25 |phi_ext - phi_1| = 1.25 * 2 */
+    TEST_NEAR(c.error, 2.5, 1e-12);
+    TEST_TRUE(strcmp(c.reason, "") == 0);
+    TEST_TRUE(isnan(c.order_coarse));
+    /* the level error, and the spacing where it falls to 0.5: 2 h^2 = 0.5 */
+    TEST_NEAR(gsn_convergence_level_error(&c, phi[1]), 4.5 + 2.5, 1e-12);
+    TEST_NEAR(gsn_convergence_spacing_for(&c, h[0], phi[0], 0.5), 0.5, 1e-12);
+
+    /* Ratios that differ (1.4 then 1.5), order 1.5, decreasing: the
+     * iteration of eq. (3) recovers both. */
+    double hv[3] = {0.2, 0.28, 0.42}, phiv[3];
+    power_law(3, hv, 5.0, -3.0, 1.5, phiv);
+    TEST_INT(gsn_convergence_estimate(3, hv, phiv, &c), GSN_OK);
+    TEST_TRUE(c.trusted);
+    TEST_NEAR(c.order, 1.5, 1e-10);
+    TEST_NEAR(c.extrapolated, 5.0, 1e-12);
+
+    /* Celik et al. (2008), Table 1, first column: N = 18000, 8000, 4500 in
+     * 2D (r21 = 1.5, r32 = 4/3), phi = 6.063, 5.972, 5.863; printed p = 1.53,
+     * phi_ext = 6.1685, GCI_fine = 2.2% (to their last digit). */
+    double hc[3] = {1.0, 1.5, 2.0}, phic[3] = {6.063, 5.972, 5.863};
+    TEST_INT(gsn_convergence_estimate(3, hc, phic, &c), GSN_OK);
+    TEST_TRUE(c.trusted);
+    TEST_NEAR(c.order, 1.53, 0.005);
+    TEST_NEAR(c.extrapolated, 6.1685, 0.00005);
+    TEST_NEAR(c.error / phic[0], 0.022, 0.0005);
+
+    /* Four levels of one power law: the coarser three agree. */
+    power_law(4, h, 1.0, 0.3, 1.2, phi);
+    TEST_INT(gsn_convergence_estimate(4, h, phi, &c), GSN_OK);
+    TEST_TRUE(c.trusted);
+    TEST_NEAR(c.order, 1.2, 1e-10);
+    TEST_NEAR(c.order_coarse, 1.2, 1e-10);
+
+    /* Non-monotone: up then down. Flagged; the finest value, with three
+     * times the larger change over r - 1 = 0.5. */
+    double h3[3] = {1.0, 1.5, 2.25}, wave[3] = {1.00, 1.10, 1.05};
+    TEST_INT(gsn_convergence_estimate(3, h3, wave, &c), GSN_OK);
+    TEST_TRUE(!c.trusted);
+    TEST_TRUE(strstr(c.reason, "oscillate") != NULL);
+    TEST_NEAR(c.extrapolated, 1.00, 0.0);
+    TEST_NEAR(c.error, 3.0 * 0.10 / 0.5, 1e-12);
+    TEST_TRUE(isnan(gsn_convergence_spacing_for(&c, 1.0, 1.0, 0.01)));
+
+    /* Monotone but the changes grow under refinement: not converging. */
+    double grow[3] = {1.00, 1.10, 1.15};
+    TEST_INT(gsn_convergence_estimate(3, h3, grow, &c), GSN_OK);
+    TEST_TRUE(!c.trusted);
+    TEST_TRUE(c.order < 0.0);
+    TEST_TRUE(strstr(c.reason, "does not converge") != NULL);
+
+    /* Order 6: outside the range the asymptotic regime allows. */
+    power_law(3, h3, 2.0, 0.01, 6.0, phi);
+    TEST_INT(gsn_convergence_estimate(3, h3, phi, &c), GSN_OK);
+    TEST_TRUE(!c.trusted);
+    TEST_NEAR(c.order, 6.0, 1e-9);
+    TEST_TRUE(strstr(c.reason, "asymptotic") != NULL);
+
+    /* Four levels whose coarsest breaks the law: the order changes. */
+    power_law(4, h, 1.0, 0.3, 1.2, phi);
+    phi[3] = phi[2] + 5.0 * (phi[2] - phi[1]);
+    TEST_INT(gsn_convergence_estimate(4, h, phi, &c), GSN_OK);
+    TEST_TRUE(!c.trusted);
+    TEST_TRUE(strstr(c.reason, "order changes") != NULL);
+
+    /* Levels that agree exactly: trusted, no error. */
+    double same[3] = {3.0, 3.0, 3.0};
+    TEST_INT(gsn_convergence_estimate(3, h3, same, &c), GSN_OK);
+    TEST_TRUE(c.trusted);
+    TEST_NEAR(c.error, 0.0, 0.0);
+
+    /* Bad input: two levels, spacings not growing, a NaN value. */
+    TEST_INT(gsn_convergence_estimate(2, h3, same, &c), GSN_ERR_INPUT);
+    gsn_error_clear();
+    double flat[3] = {1.0, 1.0, 2.0};
+    TEST_INT(gsn_convergence_estimate(3, flat, same, &c), GSN_ERR_INPUT);
+    gsn_error_clear();
+    return test_end("test_convergence");
+}
