@@ -25,9 +25,10 @@ int app_lock_outdir(const char *outdir);
 
 /* One case through pre, solve and (with_post) post, each skipped where its
  * output is up to date; after a numerical failure the frames written before
- * it are post-processed (with_post), then the failure returned. */
+ * it are post-processed (with_post), then the failure returned. *solved
+ * (may be NULL): 1 if the solve ran, 0 if it was skipped. */
 int app_run_case(const struct arguments *a, const struct gsn_case *c,
-                 const char *outdir, int with_post);
+                 const char *outdir, int with_post, int *solved);
 
 /* geoscni converge (app/converge.c) */
 int command_converge(const struct arguments *a);

@@ -25,7 +25,7 @@
 #define CONVERGE_LEVELS 3
 #define CONVERGE_RATIO 1.5
 #define CONVERGE_TOLERANCE 0.02
-enum { CONVERGE_MAX_LEVELS = 8 };
+enum { CONVERGE_MAX_LEVELS = 8, PREDICTED_POINTS = 8 };
 
 struct level {
     double spacing;                   /* particles.spacing of the level, m */
@@ -159,14 +159,13 @@ static int level_run(const struct arguments *a, const struct gsn_case *base,
     double wall = seconds_of(CLOCK_MONOTONIC);
     double cpu = seconds_of(CLOCK_PROCESS_CPUTIME_ID);
     GSN_CALL(app_lock_outdir(l->folder));
-    GSN_CALL(app_run_case(&level_arguments, &c, l->folder, 0));
-    wall = seconds_of(CLOCK_MONOTONIC) - wall;
-    cpu = seconds_of(CLOCK_PROCESS_CPUTIME_ID) - cpu;
-    /* a level found done took well under a second here: its time is the
-     * earlier call's */
-    int found_done = wall < 1.0 && isfinite(l->earlier_wall);
-    l->wall = found_done ? l->earlier_wall : wall;
-    l->cpu = found_done ? l->earlier_cpu : cpu;
+    int solved = 0;
+    GSN_CALL(app_run_case(&level_arguments, &c, l->folder, 0, &solved));
+    /* a level found done: its time is the earlier call's (NaN if unknown);
+     * a continued one counts this call's part only */
+    l->wall = solved ? seconds_of(CLOCK_MONOTONIC) - wall : l->earlier_wall;
+    l->cpu =
+        solved ? seconds_of(CLOCK_PROCESS_CPUTIME_ID) - cpu : l->earlier_cpu;
     GSN_CALL(level_size(l));
     GSN_CALL(gsn_quantity_measure(l->folder, &c, q, &l->value));
     return GSN_OK;
@@ -214,7 +213,7 @@ static void print_report(const struct level *levels, int count,
                          const struct gsn_convergence *e, double tolerance,
                          const char *description, const char *unit)
 {
-    const struct level *finest = &levels[count - 1];
+    const struct level *last = &levels[count - 1];
     printf("\nconverge: %s, by level:\n", description);
     printf("  level  spacing [m]  particles  value [%s]      CPU [s]  "
            "estimated error\n",
@@ -254,19 +253,27 @@ static void print_report(const struct level *levels, int count,
                levels[coarsest].particles, levels[coarsest].cpu);
         return;
     }
-    double room = tolerance * fabs(e->extrapolated) - e->error;
-    double h = gsn_convergence_spacing_for(e, finest->representative,
-                                           finest->value, room);
-    if (isfinite(h) && h > 0.0)
-        printf("converge: no level is within %.3g%%; the observed order "
-               "puts it near a spacing of %.3g m (%.2g times the finest)\n",
-               100.0 * tolerance, finest->spacing * h / finest->representative,
-               h / finest->representative);
-    else
+    /* A level's error is |phi - phi_ext| + 1.25 |phi_f - phi_ext| with phi_f
+     * the finest of its study: a study ending at spacing h puts its finest
+     * level within the tolerance where 2.25 C h^p <= tol |phi_ext|. */
+    double room =
+        tolerance * fabs(e->extrapolated) / (1.0 + GSN_CONVERGENCE_SAFETY);
+    double h =
+        gsn_convergence_spacing_for(e, last->representative, last->value, room);
+    if (isfinite(h) && h > 0.0) {
+        double scale = h / last->representative;
+        printf("converge: no level is within %.3g%%; the observed order puts "
+               "a study ending near a spacing of %.3g m within it (%.2g times "
+               "the finest; about %.3g times its particles and %.3g times its "
+               "time)\n",
+               100.0 * tolerance, last->spacing * scale, scale,
+               pow(scale, -3.0), pow(scale, -4.0));
+    } else {
         printf("converge: no level is within %.3g%%%s\n", 100.0 * tolerance,
-               room <= 0.0 ? ": the tolerance is below the converged value's "
-                             "own error"
-                           : "");
+               e->trusted ? ""
+                          : ", and without an observed order no spacing "
+                            "can be predicted");
+    }
 }
 
 int command_converge(const struct arguments *a)
@@ -364,9 +371,30 @@ int command_converge(const struct arguments *a)
     GSN_CALL(gsn_path_join(chart, sizeof chart, outdir, "converge.png"));
     snprintf(title, sizeof title, "%s: %s, error against CPU time%s", name,
              description, estimate.trusted ? "" : " (not asymptotic)");
+    /* a study ending finer: 2.25 C h^p at CPU time ~ h^-4, from the finest
+     * level down to the tolerance (at most 10^4 times its time) */
+    double predicted_cpu[PREDICTED_POINTS], predicted_error[PREDICTED_POINTS];
+    int predicted = 0;
+    const struct level *last = &levels[count - 1];
+    if (estimate.trusted && isfinite(estimate.order) && estimate.order > 0.0 &&
+        isfinite(last->cpu) && last->cpu > 0.0 &&
+        last->value != estimate.extrapolated) {
+        double start = (1.0 + GSN_CONVERGENCE_SAFETY) *
+                       fabs(last->value - estimate.extrapolated) /
+                       fabs(estimate.extrapolated);
+        double end = fmax(tolerance, start * pow(1e4, -estimate.order / 4.0));
+        for (; predicted < PREDICTED_POINTS; ++predicted) {
+            double e =
+                start * pow(end / start, predicted / (PREDICTED_POINTS - 1.0));
+            predicted_error[predicted] = 100.0 * e;
+            predicted_cpu[predicted] =
+                last->cpu * pow(start / e, 4.0 / estimate.order);
+        }
+    }
     if (measured >= 2 && !a->no_pictures)
-        GSN_CALL(gsn_post_convergence_chart(chart, title, measured, cpu, error,
-                                            100.0 * tolerance));
+        GSN_CALL(gsn_post_convergence_chart(
+            chart, title, measured, cpu, error, predicted, predicted_cpu,
+            predicted_error, 100.0 * tolerance));
     if (!a->quiet)
         printf("converge: %s and converge.png in %s\n", "converge.csv", outdir);
     return GSN_OK;

@@ -368,7 +368,7 @@ static int run_skipped(const struct arguments *a, const char *stage,
 }
 
 int app_run_case(const struct arguments *a, const struct gsn_case *c,
-                 const char *outdir, int with_post)
+                 const char *outdir, int with_post, int *solved)
 {
     if (!run_skipped(a, "pre", c, outdir))
         GSN_CALL(run_pre(c, outdir, a));
@@ -382,9 +382,10 @@ int app_run_case(const struct arguments *a, const struct gsn_case *c,
     if (a->restart && !restart && !a->quiet)
         printf("run: %s has no run to restart in %s: solving from the start\n",
                c->path, outdir);
-    int rc = run_skipped(a, "solve", c, outdir)
-                 ? GSN_OK
-                 : run_solve(c, outdir, a, restart);
+    int skipped = run_skipped(a, "solve", c, outdir);
+    if (solved)
+        *solved = !skipped;
+    int rc = skipped ? GSN_OK : run_solve(c, outdir, a, restart);
     if (rc == GSN_ERR_NUMERICAL && with_post) {
         /* Show what the run reached before it failed, then fail. */
         fprintf(stderr, "geoscni run: ");
@@ -435,7 +436,7 @@ static int command_run(const struct arguments *a)
     int first_failure = GSN_OK, failed = 0, ran = 0;
     for (int i = 0; i < a->case_count; ++i, ++ran) {
         const char *outdir = outdirs[i];
-        int rc = app_run_case(a, &cases[i], outdir, 1);
+        int rc = app_run_case(a, &cases[i], outdir, 1, NULL);
         if (rc == GSN_OK)
             continue;
         if (a->case_count == 1)

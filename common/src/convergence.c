@@ -98,6 +98,11 @@ int gsn_convergence_estimate(int level_count, const double *spacing,
         double rp = pow(r21, p);
         out->extrapolated = (rp * phi[0] - phi[1]) / (rp - 1.0);
         out->error = GSN_CONVERGENCE_SAFETY * fabs(out->extrapolated - phi[0]);
+        if (p > GSN_CONVERGENCE_ORDER_NOMINAL)
+            out->error =
+                fmax(out->error,
+                     GSN_CONVERGENCE_SAFETY_UNSURE * fabs(e21) /
+                         (pow(r21, GSN_CONVERGENCE_ORDER_NOMINAL) - 1.0));
     } else {
         /* the finest value, with Roache's two-level index at an assumed
          * first order, safety factor 3, on the larger of the two last

@@ -928,7 +928,9 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
 
 int gsn_post_convergence_chart(const char *path, const char *title,
                                int level_count, const double *cpu_seconds,
-                               const double *error_percent,
+                               const double *error_percent, int predicted_count,
+                               const double *predicted_seconds,
+                               const double *predicted_percent,
                                double tolerance_percent)
 {
     struct gsn_display display = {0};
@@ -943,18 +945,21 @@ int gsn_post_convergence_chart(const char *path, const char *title,
         low = fmin(low, cpu_seconds[i]);
         high = fmax(high, cpu_seconds[i]);
     }
+    for (int i = 0; i < predicted_count; ++i)
+        high = fmax(high, predicted_seconds[i]);
     const double tolerance_x[2] = {low, high};
     const double tolerance_y[2] = {tolerance_percent, tolerance_percent};
-    const char *names[2] = {"levels: |value - converged| + its error",
-                            "tolerance"};
-    const int counts[2] = {level_count, 2};
-    const double *xs[2] = {cpu_seconds, tolerance_x};
-    const double *ys[2] = {error_percent, tolerance_y};
+    const char *names[3] = {"levels: |value - converged| + its error",
+                            "tolerance",
+                            "a study ending finer (observed order)"};
+    const int counts[3] = {level_count, 2, predicted_count};
+    const double *xs[3] = {cpu_seconds, tolerance_x, predicted_seconds};
+    const double *ys[3] = {error_percent, tolerance_y, predicted_percent};
     const struct gsn_chart_style style = {
         .log_axes = 1, .markers = 1, .always_legend = 1, .legend_right = 1};
-    int rc = post_chart_write(path, title, "CPU time of the level [s]",
-                              "estimated error [%]", 2, names, counts, xs, ys,
-                              &style);
+    int rc = post_chart_write(
+        path, title, "CPU time of the level [s]", "estimated error [%]",
+        predicted_count > 1 ? 3 : 2, names, counts, xs, ys, &style);
     gsn_display_close(&display);
     GSN_CALL(rc);
     return GSN_OK;

@@ -38,6 +38,16 @@ int main(void)
     TEST_NEAR(gsn_convergence_level_error(&c, phi[1]), 4.5 + 2.5, 1e-12);
     TEST_NEAR(gsn_convergence_spacing_for(&c, h[0], phi[0], 0.5), 0.5, 1e-12);
 
+    /* Order 3, above the nominal 2: the limit is still the extrapolation,
+     * but the error is the larger of 1.25 |phi_ext - phi_1| = 1.25 * 0.1 and
+     * 3 |phi_2 - phi_1| / (1.5^2 - 1) = 3 * 0.2375 / 1.25 = 0.57. */
+    power_law(3, h, 4.0, 0.1, 3.0, phi);
+    TEST_INT(gsn_convergence_estimate(3, h, phi, &c), GSN_OK);
+    TEST_TRUE(c.trusted);
+    TEST_NEAR(c.order, 3.0, 1e-10);
+    TEST_NEAR(c.extrapolated, 4.0, 1e-13);
+    TEST_NEAR(c.error, 3.0 * 0.1 * (pow(1.5, 3.0) - 1.0) / 1.25, 1e-12);
+
     /* Ratios that differ (1.4 then 1.5), order 1.5, decreasing: the
      * iteration of eq. (3) recovers both. */
     double hv[3] = {0.2, 0.28, 0.42}, phiv[3];

@@ -20,6 +20,11 @@ enum { GSN_CONVERGENCE_REASON_SIZE = 256 };
  * the differences are mostly noise. */
 #define GSN_CONVERGENCE_ORDER_MIN 0.5
 #define GSN_CONVERGENCE_ORDER_MAX 4.0
+/* Above this order (the linear basis' best, for displacements) the
+ * observed order is more likely the levels' scatter than the method's: the
+ * error is also taken with this order and the safety factor 3, and the
+ * larger kept (Eca and Hoekstra, 2014, J. Comput. Phys. 262, 104-130). */
+#define GSN_CONVERGENCE_ORDER_NOMINAL 2.0
 /* Safety factors of the grid convergence index: three or more levels
  * converging monotonically (1.25), else (3). */
 #define GSN_CONVERGENCE_SAFETY 1.25

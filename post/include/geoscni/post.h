@@ -24,12 +24,15 @@ int gsn_post_up_to_date(const char *outdir,
 
 /* The chart of `geoscni converge` (docs/converge.md): the estimated error
  * of each level's value (percent of the converged value) against its CPU
- * time, both axes logarithmic, with the tolerance as a line; written to
- * path (a PNG, atomically). Without an X display it writes nothing, says
- * why on stderr and returns GSN_OK. */
+ * time, both axes logarithmic, with the tolerance as a line and, where
+ * predicted_count > 1, the error a study ending at a finer level would have
+ * against its time; written to path (a PNG, atomically). Without an X
+ * display it writes nothing, says why on stderr and returns GSN_OK. */
 int gsn_post_convergence_chart(const char *path, const char *title,
                                int level_count, const double *cpu_seconds,
-                               const double *error_percent,
+                               const double *error_percent, int predicted_count,
+                               const double *predicted_seconds,
+                               const double *predicted_percent,
                                double tolerance_percent);
 
 /* The VTK version loaded at run time, e.g. "9.1.0". */
