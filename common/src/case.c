@@ -551,6 +551,63 @@ static int read_integration(struct reader *r, const yaml_node_t *root,
     return GSN_OK;
 }
 
+/* drucker_prager: {cohesion, friction_angle, dilation_angle, fit}: the
+ * cone fitted to Mohr-Coulomb (gsn_drucker_prager_fit). */
+static int read_mohr_coulomb(struct reader *r, const yaml_node_t *dp,
+                             struct gsn_case *c)
+{
+    static const char *const keys[] = {"cohesion", "friction_angle",
+                                       "dilation_angle", "fit", NULL};
+    static const char *const fits[] = {"plane_strain", "compression", NULL};
+    static const char context[] = "material.drucker_prager";
+    struct gsn_material *m = &c->material;
+    GSN_CALL(check_keys(r, dp, keys, context));
+    int line_c = 0, line_phi = 0, line_psi = 0;
+    GSN_CALL(read_required_number(r, dp, context, "cohesion",
+                                  "the cohesion c in Pa (>= 0)", &m->cohesion,
+                                  &line_c));
+    GSN_CALL(read_required_number(r, dp, context, "friction_angle",
+                                  "the friction angle phi in degrees (0 to 70)",
+                                  &m->friction_angle, &line_phi));
+    GSN_CALL(read_required_number(
+        r, dp, context, "dilation_angle",
+        "the dilation angle psi in degrees (0: no volume change in shear; "
+        "equal to friction_angle: associated flow)",
+        &m->dilation_angle, &line_psi));
+    GSN_CALL(check_lower(r, line_c, "material.drucker_prager.cohesion",
+                         m->cohesion, 0.0, 0, "Pa"));
+    GSN_CHECK(m->friction_angle >= 0.0 && m->friction_angle <= 70.0,
+              GSN_ERR_INPUT,
+              "%s:%d: 'material.drucker_prager.friction_angle' must be "
+              "between 0 and 70 degrees, got %g",
+              r->path, line_phi, m->friction_angle);
+    GSN_CHECK(m->dilation_angle >= 0.0 &&
+                  m->dilation_angle <= m->friction_angle,
+              GSN_ERR_INPUT,
+              "%s:%d: 'material.drucker_prager.dilation_angle' must be "
+              "between 0 and the friction angle (%g degrees), got %g",
+              r->path, line_psi, m->friction_angle, m->dilation_angle);
+    GSN_CHECK(m->cohesion > 0.0 || m->friction_angle > 0.0, GSN_ERR_INPUT,
+              "%s:%d: 'material.drucker_prager': a soil with no cohesion and "
+              "no friction has no strength",
+              r->path, line_c);
+    m->dp_fit = GSN_DP_FIT_PLANE_STRAIN;
+    yaml_node_t *fit = mapping_find(r, dp, "fit");
+    if (fit) {
+        int index = 0;
+        GSN_CALL(
+            parse_word(r, fit, "material.drucker_prager.fit", fits, &index));
+        m->dp_fit = (enum gsn_dp_fit)index;
+    }
+    gsn_drucker_prager_fit(m->dp_fit, m->cohesion, m->friction_angle,
+                           m->dilation_angle, &m->dp_alpha, &m->dp_R,
+                           &m->dp_dilatancy);
+    c->material_line.R = line_c;
+    m->dp_from_mohr_coulomb = 1;
+    m->has_plasticity = 1;
+    return GSN_OK;
+}
+
 static int read_material(struct reader *r, const yaml_node_t *root,
                          struct gsn_case *c)
 {
@@ -598,11 +655,15 @@ static int read_material(struct reader *r, const yaml_node_t *root,
     }
 
     yaml_node_t *dp = mapping_find(r, node, "drucker_prager");
-    if (dp) {
+    if (dp && (mapping_find(r, dp, "cohesion") ||
+               mapping_find(r, dp, "friction_angle")))
+        GSN_CALL(read_mohr_coulomb(r, dp, c));
+    else if (dp) {
         GSN_CALL(check_keys(r, dp, dp_keys, "material.drucker_prager"));
         int line_alpha = 0, line_R = 0;
         GSN_CALL(read_required_number(r, dp, "material.drucker_prager", "alpha",
-                                      "the friction coefficient (>= 0)",
+                                      "the friction coefficient (>= 0), or "
+                                      "cohesion and friction_angle instead",
                                       &m->dp_alpha, &line_alpha));
         GSN_CALL(read_required_number(r, dp, "material.drucker_prager", "R",
                                       "the cohesion-like strength in Pa (>= 0)",
@@ -1148,7 +1209,16 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
     if (m->has_damage)
         fprintf(out, "  damage: {e0: %.17g, ef: %.17g}\n", m->damage_e0,
                 m->damage_ef);
-    if (m->has_plasticity)
+    if (m->has_plasticity && m->dp_from_mohr_coulomb)
+        fprintf(out,
+                "  drucker_prager: {cohesion: %.17g, friction_angle: %.17g, "
+                "dilation_angle: %.17g, fit: %s}   # alpha %.17g, R %.17g, "
+                "dilatancy %.17g\n",
+                m->cohesion, m->friction_angle, m->dilation_angle,
+                m->dp_fit == GSN_DP_FIT_COMPRESSION ? "compression"
+                                                    : "plane_strain",
+                m->dp_alpha, m->dp_R, m->dp_dilatancy);
+    else if (m->has_plasticity)
         fprintf(out,
                 "  drucker_prager: {alpha: %.17g, R: %.17g, dilatancy: "
                 "%.17g}\n",
@@ -1531,4 +1601,37 @@ void gsn_case_scale_spacing(struct gsn_case *c, double factor)
         c->refinements[k].spacing *= factor;
     if (!c->time_step_auto)
         c->time_step *= factor;
+}
+
+/* Seed eq. (8) in sqrt(J2) reads sqrt(J2) + a I1 - k (a = alpha / sqrt 2,
+ * k = R / sqrt 2, b = beta / sqrt 2 of the potential). Plane strain with
+ * the out-of-plane plastic strain zero (s_yy = -2 b sqrt(J2)) turns the
+ * cone into t (1 - 3 a b) / sqrt(1 - 3 b^2) = k - 3 a s (t, s: radius and
+ * centre of the in-plane Mohr circle, tension positive), which is
+ * Mohr-Coulomb's t = c cos(phi) - s sin(phi) for the a and k below; the
+ * dilation of that flow is sin(psi) = 3 b / sqrt(1 - 3 b^2). With b = a
+ * these are Drucker and Prager's (1952) a = tan(phi) / sqrt(9 + 12
+ * tan^2(phi)), k = 3 c / sqrt(9 + 12 tan^2(phi)); with psi = 0, a =
+ * sin(phi) / 3, k = c cos(phi). The compression cone passes through the
+ * triaxial-compression corners of the hexagon. */
+void gsn_drucker_prager_fit(enum gsn_dp_fit fit, double cohesion,
+                            double friction_angle, double dilation_angle,
+                            double *alpha, double *R, double *beta)
+{
+    const double degree = acos(-1.0) / 180.0;
+    double sp = sin(friction_angle * degree), cp = cos(friction_angle * degree);
+    double ss = sin(dilation_angle * degree), a, k, b;
+    if (fit == GSN_DP_FIT_COMPRESSION) {
+        a = 2.0 * sp / (sqrt(3.0) * (3.0 - sp));
+        k = 6.0 * cohesion * cp / (sqrt(3.0) * (3.0 - sp));
+        b = 2.0 * ss / (sqrt(3.0) * (3.0 - ss));
+    } else {
+        b = ss / sqrt(9.0 + 3.0 * ss * ss);
+        double root = sqrt(1.0 - 3.0 * b * b);
+        a = sp / (3.0 * root + 3.0 * b * sp);
+        k = cohesion * cp * (1.0 - 3.0 * a * b) / root;
+    }
+    *alpha = sqrt(2.0) * a;
+    *R = sqrt(2.0) * k;
+    *beta = sqrt(2.0) * b;
 }

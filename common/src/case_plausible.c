@@ -101,7 +101,15 @@ int gsn_case_warn_implausible(const struct gsn_case *c, FILE *out)
                  m->bulk_modulus, MODULUS_RATIO_HIGH, m->shear_modulus);
         warn(out, c, c->material_line.bulk_modulus, text, &count);
     }
-    if (m->has_plasticity && m->dp_R > 0.0 && m->dp_R < STRENGTH_LOW) {
+    if (m->has_plasticity && m->dp_from_mohr_coulomb && m->cohesion > 0.0 &&
+        m->cohesion < STRENGTH_LOW) {
+        snprintf(text, sizeof text,
+                 "material.drucker_prager.cohesion = %g Pa is a very weak "
+                 "soil (below %g Pa): if it is given in kPa, write %g",
+                 m->cohesion, STRENGTH_LOW, m->cohesion * 1e3);
+        warn(out, c, c->material_line.R, text, &count);
+    } else if (m->has_plasticity && !m->dp_from_mohr_coulomb && m->dp_R > 0.0 &&
+               m->dp_R < STRENGTH_LOW) {
         snprintf(text, sizeof text,
                  "material.drucker_prager.R = %g Pa is a very weak soil "
                  "(below %g Pa): if it is given in kPa, write %g",

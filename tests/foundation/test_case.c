@@ -46,6 +46,69 @@ static void check_valid(const struct gsn_case *c)
     TEST_NEAR(c->output_every, 0.5, 0.0);
 }
 
+/* material.drucker_prager in engineers' terms (issue 18, point 1): the
+ * fits against their closed forms, and a case file through the reader and
+ * back through the resolved YAML. */
+static void test_mohr_coulomb(void)
+{
+    const double degree = acos(-1.0) / 180.0;
+    double alpha = 0, R = 0, beta = 0;
+    /* The paper's cone (alpha 0.07, R 0.19 MPa) is Drucker and Prager's
+     * plane-strain fit of phi = 8.571 degrees, c = 0.13637 MPa
+     * (REFERENCES.md): inverted exactly, a = tan(phi) / sqrt(9 + 12 tan^2),
+     * k = 3 c / sqrt(9 + 12 tan^2) (a, k = alpha, R over sqrt 2), the
+     * associated fit gives them back to rounding. */
+    double a = 0.07 / sqrt(2.0), k = 0.19e6 / sqrt(2.0);
+    double t = 3.0 * a / sqrt(1.0 - 12.0 * a * a);
+    double phi = atan(t) / degree, c = k * sqrt(9.0 + 12.0 * t * t) / 3.0;
+    TEST_NEAR(phi, 8.571, 0.0005); /* the reference's printed digits */
+    TEST_NEAR(c, 0.13637e6, 5.0);
+    gsn_drucker_prager_fit(GSN_DP_FIT_PLANE_STRAIN, c, phi, phi, &alpha, &R,
+                           &beta);
+    TEST_REL(alpha, 0.07, 1e-14);
+    TEST_REL(R, 0.19e6, 1e-14);
+    TEST_REL(beta, 0.07, 1e-14);
+    /* Plane strain without dilation: a = sin(phi) / 3, k = c cos(phi), the
+     * known match for psi = 0 (Davis and Selvadurai 2002). */
+    gsn_drucker_prager_fit(GSN_DP_FIT_PLANE_STRAIN, 10e3, 30.0, 0.0, &alpha, &R,
+                           &beta);
+    TEST_REL(alpha, sqrt(2.0) * sin(30.0 * degree) / 3.0, 1e-15);
+    TEST_REL(R, sqrt(2.0) * 10e3 * cos(30.0 * degree), 1e-15);
+    TEST_NEAR(beta, 0.0, 0.0);
+    /* The compression cone of phi = 30 degrees: a = 2 sin / (sqrt 3 (3 -
+     * sin)) = 1 / (2.5 sqrt 3), k = 6 c cos / (sqrt 3 (3 - sin)). */
+    gsn_drucker_prager_fit(GSN_DP_FIT_COMPRESSION, 10e3, 30.0, 30.0, &alpha, &R,
+                           &beta);
+    TEST_REL(alpha, sqrt(2.0) / (2.5 * sqrt(3.0)), 1e-15);
+    TEST_REL(R, sqrt(2.0) * 6.0 * 10e3 * cos(30.0 * degree) / (2.5 * sqrt(3.0)),
+             1e-15);
+
+    struct gsn_case from_file, again;
+    TEST_INT(gsn_case_load("cases/mohr_coulomb.yaml", &from_file), GSN_OK);
+    const struct gsn_material *m = &from_file.material;
+    TEST_INT(m->has_plasticity, 1);
+    TEST_INT(m->dp_from_mohr_coulomb, 1);
+    TEST_INT(m->dp_fit, GSN_DP_FIT_PLANE_STRAIN);
+    TEST_NEAR(m->cohesion, 10e3, 0.0);
+    TEST_NEAR(m->friction_angle, 30.0, 0.0);
+    TEST_NEAR(m->dilation_angle, 5.0, 0.0);
+    gsn_drucker_prager_fit(GSN_DP_FIT_PLANE_STRAIN, 10e3, 30.0, 5.0, &alpha, &R,
+                           &beta);
+    TEST_NEAR(m->dp_alpha, alpha, 0.0);
+    TEST_NEAR(m->dp_R, R, 0.0);
+    TEST_NEAR(m->dp_dilatancy, beta, 0.0);
+    char path[] = "/tmp/geoscni-test-case-XXXXXX";
+    int fd = mkstemp(path);
+    TEST_TRUE(fd >= 0);
+    FILE *out = fdopen(fd, "w");
+    TEST_INT(gsn_case_write_yaml(&from_file, out), GSN_OK);
+    fclose(out);
+    TEST_INT(gsn_case_load(path, &again), GSN_OK);
+    TEST_TRUE(memcmp(&from_file.material, &again.material,
+                     sizeof again.material) == 0);
+    remove(path);
+}
+
 int main(void)
 {
     test_begin();
@@ -83,6 +146,8 @@ int main(void)
     TEST_INT(c.material.has_plasticity, 0);
     TEST_INT(c.boundary_count, 0);
     TEST_NEAR(c.gravity[0] + c.gravity[1] + c.gravity[2], 0.0, 0.0);
+
+    test_mohr_coulomb();
 
     /* A missing case file is an I/O error naming the file. */
     TEST_INT(gsn_case_load("cases/no_such_case.yaml", &c), GSN_ERR_IO);

@@ -89,6 +89,22 @@ struct gsn_refinement {
     double width;    /* m from a surface within which spacing holds (SURFACE) */
 };
 
+/* How a Drucker-Prager cone is fitted to Mohr-Coulomb's c, phi, psi
+ * (material.drucker_prager.fit; docs/material.md, "In engineers' terms"). */
+enum gsn_dp_fit {
+    GSN_DP_FIT_PLANE_STRAIN = 0, /* the same strength in plane strain, for
+                                    the flow of the given dilation angle */
+    GSN_DP_FIT_COMPRESSION       /* through the triaxial-compression corners
+                                    (the outer cone) */
+};
+
+/* alpha, R and the dilatancy beta of seed eq. (8) (f = ||dev s|| + alpha
+ * tr s - R, potential ||dev s|| + beta tr s, tension positive) from the
+ * cohesion c (Pa) and the friction and dilation angles (degrees). */
+void gsn_drucker_prager_fit(enum gsn_dp_fit fit, double cohesion,
+                            double friction_angle, double dilation_angle,
+                            double *alpha, double *R, double *beta);
+
 struct gsn_material {
     double density;       /* rho0, kg/m^3 */
     double bulk_modulus;  /* K, Pa */
@@ -100,6 +116,13 @@ struct gsn_material {
     double dp_alpha;      /* friction coefficient alpha, - */
     double dp_R;          /* cohesion-like R, Pa */
     double dp_dilatancy;  /* beta of the potential; = alpha: associated */
+    /* given in engineers' terms (drucker_prager: {cohesion, ...}): those
+     * values, from which alpha, R and beta were fitted; else 0 */
+    int dp_from_mohr_coulomb;
+    double cohesion;       /* c, Pa */
+    double friction_angle; /* phi, degrees */
+    double dilation_angle; /* psi, degrees */
+    enum gsn_dp_fit dp_fit;
 };
 
 /* gmsh's volume mesher, whose nodes are the particles: Delaunay (one
