@@ -186,24 +186,28 @@ static int estimate_levels(const struct level *levels, int count,
 }
 
 /* A force on a surface whose area follows the spacing (a slab two spacings
- * thick) does not converge to anything: say so, and what to follow. */
-static int warn_area_changes(const struct level *levels, int count,
-                             const struct gsn_quantity *q)
+ * thick) does not converge to anything: *changed says so. */
+static int area_changes(const struct level *levels, int count,
+                        const struct gsn_quantity *q, int *changed)
 {
     double first = 0.0, area = 0.0;
-    for (int i = 0; i < count; ++i) {
+    *changed = 0;
+    for (int i = 0; i < count && !*changed; ++i) {
         GSN_CALL(
             gsn_quantity_surface_area(levels[i].folder, q->surface, &area));
         if (i == 0)
             first = area;
         else if (fabs(area - first) > 0.01 * first) {
             fprintf(stderr,
-                    "warning: the area of '%s' changes with the spacing "
-                    "(%.4g m^2 at level 1, %.4g m^2 at level %d): its force "
-                    "follows the area, not the discretization; follow the "
-                    "pressure instead (--quantity peak_pressure)\n",
-                    q->surface, first, area, i + 1);
-            break;
+                    "%s: the area of '%s' changes with the spacing (%.4g m^2 "
+                    "at level 1, %.4g m^2 at level %d): its force follows "
+                    "the area, not the discretization; %s\n",
+                    q->per_area ? "converge" : "warning", q->surface, first,
+                    area, i + 1,
+                    q->per_area ? "following the pressure on it instead"
+                                : "follow the pressure instead (--quantity "
+                                  "peak_pressure)");
+            *changed = 1;
         }
     }
     return GSN_OK;
@@ -343,8 +347,21 @@ int command_converge(const struct arguments *a)
             printf("\n");
         }
     }
-    if (q.kind != GSN_QUANTITY_DISPLACEMENT_AT && !q.per_area)
-        GSN_CALL(warn_area_changes(levels, count, &q));
+    if (q.kind != GSN_QUANTITY_DISPLACEMENT_AT && !q.per_area) {
+        /* the default quantity turns into the pressure; one asked for is
+         * kept, with the warning */
+        int changed = 0;
+        q.per_area = !a->quantity;
+        GSN_CALL(area_changes(levels, count, &q, &changed));
+        q.per_area = changed && !a->quantity;
+        if (q.per_area) {
+            GSN_CALL(gsn_quantity_resolve(&c, &q, description,
+                                          sizeof description, &unit));
+            for (int i = 0; i < count; ++i)
+                GSN_CALL(gsn_quantity_measure(levels[i].folder, &c, &q,
+                                              &levels[i].value));
+        }
+    }
     struct gsn_convergence estimate;
     GSN_CALL(estimate_levels(levels, count, &estimate));
     GSN_CALL(csv_write(csv, levels, count, &estimate, tolerance));

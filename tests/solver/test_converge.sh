@@ -13,7 +13,8 @@
 #   whose solve was stopped (SIGTERM: results.h5 not complete) is continued
 #   from its checkpoint and gives the same value again;
 # - the footing's force on this slab (two spacings thick) follows the
-#   thickness, and converge says so;
+#   thickness: the default quantity turns into the pressure, a force asked
+#   for is kept with a warning;
 # - bad options end with exit 2 and the forms to use.
 . ./cli_testing.sh
 root=$(cd ../.. && pwd)
@@ -61,10 +62,16 @@ status=$?
 grep -q "^restart: from the checkpoint at step" "$out/log4" || fail "the stopped level was not continued: $(grep -i 'level 3' -A3 "$out/log4")"
 [ "$(grep '^converged value: ' "$out/log4")" = "$line" ] || fail "the resumed study differs: $(grep '^converged value' "$out/log4")"
 
-# The force on this slab follows its thickness (two spacings).
+# The force on this slab follows its thickness (two spacings): the default
+# quantity turns into the pressure, a force asked for is kept with a warning.
 "$geoscni" converge "$out/strip.yaml" -o "$out/c" --no-pictures >"$out/log5" 2>&1 ||
-    fail "converge of the force failed: $(tail -3 "$out/log5")"
-grep -q "warning: the area of 'footing' changes with the spacing .*--quantity peak_pressure" "$out/log5" ||
+    fail "converge with the default quantity failed: $(tail -3 "$out/log5")"
+grep -q "converge: the area of 'footing' changes with the spacing .*following the pressure on it instead" "$out/log5" ||
+    fail "the default quantity did not turn into the pressure"
+[ "$(grep '^converged value: ' "$out/log5")" = "$line" ] || fail "the default quantity's value differs from the pressure's"
+"$geoscni" converge "$out/strip.yaml" -o "$out/c" --no-pictures --quantity peak_force >"$out/log6" 2>&1 ||
+    fail "converge of the force failed: $(tail -3 "$out/log6")"
+grep -q "warning: the area of 'footing' changes with the spacing .*--quantity peak_pressure" "$out/log6" ||
     fail "no warning that the footing's area follows the spacing"
 
 # Bad options.
