@@ -233,14 +233,14 @@ static void print_report(const struct level *levels, int count,
         printf("converge: observed order %.2f", e->order);
     else
         printf("converge: no observed order");
-    if (isfinite(e->order_coarse))
-        printf(" (%.2f on the coarser three levels)", e->order_coarse);
+    if (isfinite(e->scatter))
+        printf(" (least squares over the %d levels, standard deviation %.3g "
+               "%s)",
+               count, e->scatter, unit);
     printf("\n");
     if (!e->trusted)
-        printf("converge: NOT IN THE ASYMPTOTIC RANGE: %s. The extrapolation "
-               "is not to be trusted: the value below is the finest level's, "
-               "with a cautious error (3 times the last change over the "
-               "ratio - 1); refine further (--levels %d) or start finer\n",
+        printf("converge: NOT IN THE ASYMPTOTIC RANGE: %s. Do not trust the "
+               "extrapolation; refine further (--levels %d) or start finer\n",
                e->reason, count + 1);
     printf("converged value: %.6g %s (estimated error %.2g %s, %.2f%%)\n",
            e->extrapolated, unit, e->error, unit,

@@ -1,10 +1,14 @@
 /* The discretization error of one number computed at several particle
  * spacings: the observed order, the Richardson-extrapolated value and an
- * error estimate, by the procedure of Celik et al. (2008), "Procedure for
- * estimation and reporting of uncertainty due to discretization in CFD
- * applications", J. Fluids Eng. 130, 078001 (Roache's grid convergence
- * index with the safety factor 1.25), on the three finest levels; a fourth
- * and coarser level checks that the order holds (docs/converge.md). */
+ * error estimate. Three levels: the procedure of Celik et al. (2008),
+ * "Procedure for estimation and reporting of uncertainty due to
+ * discretization in CFD applications", J. Fluids Eng. 130, 078001 (Roache's
+ * grid convergence index with the safety factor 1.25). Four or more: the
+ * least-squares fit phi = phi_0 + a h^p of Eca and Hoekstra (2014), "A
+ * procedure for the estimation of the numerical uncertainty of CFD
+ * calculations based on grid refinement studies", J. Comput. Phys. 262,
+ * 104-130, whose standard deviation carries the levels' scatter into the
+ * error (docs/converge.md). */
 #ifndef GEOSCNI_CONVERGENCE_H
 #define GEOSCNI_CONVERGENCE_H
 
@@ -29,20 +33,20 @@ enum { GSN_CONVERGENCE_REASON_SIZE = 256 };
  * converging monotonically (1.25), else (3). */
 #define GSN_CONVERGENCE_SAFETY 1.25
 #define GSN_CONVERGENCE_SAFETY_UNSURE 3.0
-/* With four levels, the order of the coarser three may differ from the
- * finer three's by this much (relative) in the asymptotic range. */
-#define GSN_CONVERGENCE_ORDER_AGREEMENT 0.5
 
 struct gsn_convergence {
     double order;        /* observed p; NaN when it cannot be computed */
-    double order_coarse; /* of the three coarser levels (4 or more), else NaN */
+    double scatter;      /* four or more levels: the standard deviation of
+                            the least-squares fit (units of the values);
+                            NaN with three */
     double extrapolated; /* phi_ext: converged value (Richardson, or the
-                            finest value when not trusted) */
+                            cautious value when not trusted) */
     double error;        /* estimated error of `extrapolated`, >= 0, in its
                             units */
-    int trusted;         /* 1: monotone, order in range (and agreeing with
-                            the coarser levels' where there are four) */
-    char reason[GSN_CONVERGENCE_REASON_SIZE]; /* why not, in words, or "" */
+    int trusted;         /* 1: monotone, order in range (three levels), or
+                            a least-squares order in range (four or more) */
+    char reason[GSN_CONVERGENCE_REASON_SIZE]; /* why not, and what is given
+                                                 instead, in words, or "" */
 };
 
 /* level_count >= 3 values, finest first, with their representative
