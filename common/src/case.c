@@ -966,6 +966,71 @@ static int read_reference_update(struct reader *r, const yaml_node_t *root,
     return GSN_OK;
 }
 
+/* geostatic: off (the default), on, or {residual, damping, max_steps}. */
+static int read_geostatic(struct reader *r, const yaml_node_t *root,
+                          struct gsn_case *c)
+{
+    static const char *const keys[] = {"residual", "damping", "max_steps",
+                                       NULL};
+    static const char *const words[] = {"off", "on", NULL};
+    c->geostatic_residual = GSN_DEFAULT_GEOSTATIC_RESIDUAL;
+    c->geostatic_damping = GSN_DEFAULT_GEOSTATIC_DAMPING;
+    c->geostatic_max_steps = GSN_DEFAULT_GEOSTATIC_MAX_STEPS;
+    yaml_node_t *node = mapping_find(r, root, "geostatic");
+    if (!node)
+        return GSN_OK;
+    c->geostatic_line = node_line(node);
+    int index = 1;
+    if (node->type == YAML_SCALAR_NODE)
+        GSN_CALL(parse_word(r, node, "geostatic", words, &index));
+    else {
+        GSN_CALL(check_keys(r, node, keys, "geostatic"));
+        int line = c->geostatic_line;
+        GSN_CALL(read_number(r, node, "geostatic", "residual",
+                             &c->geostatic_residual, &line));
+        GSN_CHECK(c->geostatic_residual > 0.0 && c->geostatic_residual < 1.0,
+                  GSN_ERR_INPUT,
+                  "%s:%d: 'geostatic.residual' (the unbalanced force over "
+                  "the weight at which the body is at rest) must be between "
+                  "0 and 1, got %g",
+                  r->path, line, c->geostatic_residual);
+        line = c->geostatic_line;
+        GSN_CALL(read_number(r, node, "geostatic", "damping",
+                             &c->geostatic_damping, &line));
+        GSN_CHECK(c->geostatic_damping >= 0.0 && c->geostatic_damping < 1.0,
+                  GSN_ERR_INPUT,
+                  "%s:%d: 'geostatic.damping' (the local damping while the "
+                  "body settles) must be at least 0 and below 1, got %g",
+                  r->path, line, c->geostatic_damping);
+        yaml_node_t *steps = mapping_find(r, node, "max_steps");
+        if (steps) {
+            int value = 0;
+            GSN_CALL(parse_integer(r, steps, "geostatic.max_steps", &value));
+            GSN_CHECK(value >= 1, GSN_ERR_INPUT,
+                      "%s:%d: 'geostatic.max_steps' must be 1 or more, got %d",
+                      r->path, node_line(steps), value);
+            c->geostatic_max_steps = value;
+        }
+    }
+    c->geostatic = index == 1;
+    int weight =
+        c->gravity[0] != 0.0 || c->gravity[1] != 0.0 || c->gravity[2] != 0.0;
+    for (int b = 0; b < c->boundary_count; ++b)
+        for (int k = 0; k < 3; ++k) {
+            weight |= c->boundaries[b].traction[k] != 0.0;
+            GSN_CHECK(!c->geostatic || !c->boundaries[b].rigid, GSN_ERR_INPUT,
+                      "%s:%d: 'geostatic' with a rigid body ('%s': rigid: "
+                      "true) is not supported yet: drop one of them",
+                      r->path, c->geostatic_line, c->boundaries[b].name);
+        }
+    GSN_CHECK(!c->geostatic || weight, GSN_ERR_INPUT,
+              "%s:%d: 'geostatic' brings the dead loads to equilibrium, but "
+              "there are none: give gravity (e.g. [0, 0, -9.81]) or a "
+              "traction",
+              r->path, c->geostatic_line);
+    return GSN_OK;
+}
+
 static int read_output(struct reader *r, const yaml_node_t *root,
                        struct gsn_case *c)
 {
@@ -1024,7 +1089,7 @@ static int read_document(struct reader *r, struct gsn_case *c)
         "geometry",     "particles",  "kernel",   "integration",
         "material",     "gravity",    "boundary", "time",
         "damping",      "kinematics", "output",   "reference_update",
-        "plane_strain", NULL};
+        "plane_strain", "geostatic",  NULL};
     yaml_node_t *root = yaml_document_get_root_node(&r->document);
     GSN_CHECK(root != NULL, GSN_ERR_INPUT,
               "%s:1: the case file is empty; expected a mapping with "
@@ -1043,6 +1108,7 @@ static int read_document(struct reader *r, struct gsn_case *c)
     GSN_CALL(read_kinematics(r, root, c));
     GSN_CALL(read_plane_strain(r, root, c));
     GSN_CALL(read_reference_update(r, root, c));
+    GSN_CALL(read_geostatic(r, root, c));
     GSN_CALL(read_output(r, root, c));
     return GSN_OK;
 }
@@ -1266,6 +1332,12 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
         fprintf(out, ", min_steps: %d}\n", c->reference_min_steps);
     } else
         fprintf(out, "reference_update: off\n");
+    if (c->geostatic)
+        fprintf(out,
+                "geostatic: {residual: %.17g, damping: %.17g, max_steps: "
+                "%ld}\n",
+                c->geostatic_residual, c->geostatic_damping,
+                c->geostatic_max_steps);
     fputs("output: {", out);
     if (c->output_every > 0.0)
         fprintf(out, "every: %.17g, ", c->output_every);

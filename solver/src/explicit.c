@@ -1173,8 +1173,11 @@ static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
                 if (!(e->constrained[i] & (1 << k))) {
                     double v_half =
                         e->velocity[at] + 0.5 * dt * e->acceleration[at];
-                    damping = v_half > 0.0   ? -e->damping_local * fabs(f)
-                              : v_half < 0.0 ? e->damping_local * fabs(f)
+                    /* with damping_net, on the force the supports leave
+                     * unbalanced (the last step's reaction added) */
+                    double net = fabs(e->damping_net ? f + e->reaction[at] : f);
+                    damping = v_half > 0.0   ? -e->damping_local * net
+                              : v_half < 0.0 ? e->damping_local * net
                                              : 0.0;
                 }
                 sums->dissipated -=

@@ -105,6 +105,11 @@ struct gsn_explicit {
     double phase_seconds[GSN_PHASE_COUNT]; /* wall time of the steps, s */
     double damping_work;   /* J dissipated by the local damping */
     double damping_local;  /* Cundall's coefficient (case damping.local) */
+    int damping_net;       /* 1: the damping acts on f_ext - f_int plus the
+                              last step's reaction C^T lambda, which vanishes
+                              at rest also beside held faces (the geostatic
+                              stage); 0: on f_ext - f_int, which there does
+                              not (the loading stage, as measured so far) */
     double *damping_force; /* n x 3, N: the local damping force of the last
                               step (its work is a trapezoid like W_ext) */
 

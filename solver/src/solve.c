@@ -96,6 +96,9 @@ struct run {
     /* the full resultant of each traction entry on the present reference
      * configuration, N (the loop applies it times its load factor) */
     double traction_force[GSN_MAX_BOUNDARIES][3];
+    /* the geostatic stage of this run (a fresh run of a case with it) */
+    long geostatic_steps;
+    double geostatic_residual, geostatic_seconds;
 };
 
 static double now_seconds(void)
@@ -224,7 +227,10 @@ static void traction_resultants(struct run *r)
  * gsn_ramp_factor). */
 static double load_factor(const struct run *r, double t)
 {
-    return gsn_ramp_factor(r->c->time_ramp, GSN_FIELD_VELOCITY, t);
+    /* after a geostatic stage the dead loads are on from the start */
+    return r->c->geostatic
+               ? 1.0
+               : gsn_ramp_factor(r->c->time_ramp, GSN_FIELD_VELOCITY, t);
 }
 
 /* Sets the loop's f_ext to the dead loads at time t (a no-op once they are
@@ -1528,7 +1534,7 @@ static int setup_loads(struct run *r)
                 c->path);
     if (!gravity && !traction)
         return GSN_OK;
-    if (!(c->time_ramp > 0.0)) {
+    if (!(c->time_ramp > 0.0) && !c->geostatic) {
         warn_sudden_load(r, gravity, traction);
         return GSN_OK;
     }
@@ -1694,6 +1700,141 @@ static int report_quasi_static(struct run *r)
     return GSN_OK;
 }
 
+static int write_geostatic_attributes(struct run *r)
+{
+    GSN_CALL(gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_GEOSTATIC_STEPS,
+                                   (int)r->geostatic_steps));
+    GSN_CALL(gsn_h5_attr_write_double(r->results,
+                                      GSN_RESULTS_ATTR_GEOSTATIC_RESIDUAL,
+                                      r->geostatic_residual));
+    GSN_CALL(gsn_h5_attr_write_double(
+        r->results, GSN_RESULTS_ATTR_GEOSTATIC_SECONDS, r->geostatic_seconds));
+    return GSN_OK;
+}
+
+/* The unbalanced force of the body over its load, |M a| / |f_ext|, with a
+ * = M^-1 (f_ext - f_int) projected onto the constraints (the supports'
+ * reaction included, the local damping not: the loop's damping acts on the
+ * force before the reaction, so near held faces it does not vanish at
+ * rest), over the components the loop moves; work: 3 n doubles. */
+static int unbalanced_force(const struct run *r, double *work, double *residual)
+{
+    const struct gsn_explicit *e = r->reference->loop;
+    size_t n3 = 3 * (size_t)e->particle_count;
+    for (size_t at = 0; at < n3; ++at)
+        work[at] = (int)(at % 3) == e->held_axis
+                       ? 0.0
+                       : (e->f_ext[at] - e->f_int[at]) / e->mass[at / 3];
+    if (r->reference->constraints)
+        GSN_CALL(
+            gsn_constraints_apply(r->reference->constraints,
+                                  &r->reference->quadrature->particle_values,
+                                  GSN_FIELD_ACCELERATION, e->time, work, NULL));
+    double unbalanced = 0.0, load = 0.0;
+    for (size_t at = 0; at < n3; ++at) {
+        double f = e->mass[at / 3] * work[at];
+        unbalanced += f * f;
+        load += e->f_ext[at] * e->f_ext[at];
+    }
+    *residual = load > 0.0 ? sqrt(unbalanced / load) : 0.0;
+    return GSN_OK;
+}
+
+/* The geostatic stage (docs/solver.md, "The soil's own weight"): the dead
+ * loads raised smoothly over four transits of a pressure wave across the
+ * body, then the body relaxed with strong local damping, the boundaries
+ * that will move held still, until the unbalanced force falls to
+ * geostatic.residual of the load. The loading stage starts from that stress
+ * and material state with d = v = a = 0, at t = 0, its energies at zero. */
+static int geostatic_stage(struct run *r)
+{
+    const struct gsn_case *c = r->c;
+    struct gsn_explicit *e = r->reference->loop;
+    double started = now_seconds(), last_print = started;
+    double extent = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        double low = INFINITY, high = -INFINITY;
+        for (int i = 0; i < r->model.particle_count; ++i) {
+            low = fmin(low, r->model.position[3 * (size_t)i + (size_t)k]);
+            high = fmax(high, r->model.position[3 * (size_t)i + (size_t)k]);
+        }
+        extent = fmax(extent, high - low);
+    }
+    const struct gsn_material *m = &c->material;
+    double wave =
+        sqrt((m->bulk_modulus + 4.0 / 3.0 * m->shear_modulus) / m->density);
+    long ramp = (long)ceil(4.0 * extent / (wave * e->dt));
+    if (ramp < 50)
+        ramp = 50;
+    double damping = e->damping_local, residual = INFINITY;
+    e->damping_local = c->geostatic_damping;
+    e->damping_net = 1;
+    if (r->reference->constraints)
+        gsn_constraints_hold_still(r->reference->constraints, 1);
+    long step = 0;
+    int rc = GSN_OK;
+    double *work = malloc(3 * sizeof(double) * ((size_t)e->particle_count + 1));
+    GSN_CHECK_GOTO(work, rc, GSN_ERR_MEMORY, done, "out of memory");
+    while (step < c->geostatic_max_steps) {
+        GSN_CHECK_GOTO(!stop_signal, rc, GSN_ERR_INTERRUPTED, done,
+                       "%s during the geostatic stage (step %ld): nothing "
+                       "was written; solve again from the start",
+                       stopped_by(stop_signal), step);
+        double pi = acos(-1.0);
+        gsn_explicit_set_load_factor(
+            e, step < ramp ? 0.5 * (1.0 - cos(pi * (step + 1) / ramp)) : 1.0);
+        GSN_CALL_GOTO(gsn_explicit_step(e), rc, done);
+        ++step;
+        if (step >= ramp && step % 10 == 0) {
+            GSN_CALL_GOTO(unbalanced_force(r, work, &residual), rc, done);
+            if (residual <= c->geostatic_residual)
+                break;
+        }
+        if (!r->options->quiet && now_seconds() - last_print >= 10.0) {
+            fprintf(stderr,
+                    "geostatic: step %ld, unbalanced force %.3g of the load "
+                    "(to reach %.3g)\n",
+                    step, residual, c->geostatic_residual);
+            last_print = now_seconds();
+        }
+    }
+    if (!(residual <= c->geostatic_residual))
+        GSN_CALL_GOTO(unbalanced_force(r, work, &residual), rc, done);
+    GSN_CHECK_GOTO(
+        residual <= c->geostatic_residual, rc, GSN_ERR_NUMERICAL, done,
+        "%s: the body found no rest under its dead loads within %ld steps "
+        "(geostatic.max_steps): the unbalanced force is still %.3g of the "
+        "load (geostatic.residual %.3g); it may not stand (a factor of "
+        "safety below 1), or it needs more steps",
+        c->path, step, residual, c->geostatic_residual);
+    size_t n3 = 3 * (size_t)e->particle_count;
+    memset(e->displacement, 0, n3 * sizeof(double));
+    memset(e->previous_displacement, 0, n3 * sizeof(double));
+    memset(e->velocity, 0, n3 * sizeof(double));
+    memset(e->acceleration, 0, n3 * sizeof(double));
+    e->kinetic_energy = e->internal_energy = e->external_work = 0.0;
+    e->damping_work = 0.0;
+    e->step = e->step_base = 0;
+    e->time = e->time_base = 0.0;
+    r->geostatic_steps = step;
+    r->geostatic_residual = residual;
+    r->geostatic_seconds = now_seconds() - started;
+    if (!r->options->quiet)
+        printf("geostatic: at rest after %ld steps (the dead loads raised "
+               "over %ld): unbalanced force %.3g of the load (limit %.3g), "
+               "%.1f s; the loading starts from this state with zero "
+               "displacements\n",
+               step, ramp, residual, c->geostatic_residual,
+               r->geostatic_seconds);
+done:
+    free(work);
+    e->damping_local = damping;
+    e->damping_net = 0;
+    if (r->reference->constraints)
+        gsn_constraints_hold_still(r->reference->constraints, 0);
+    return rc;
+}
+
 int gsn_solve_run(const struct gsn_case *c, const char *outdir,
                   const struct gsn_solve_options *options)
 {
@@ -1722,12 +1863,20 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
                   rc, done);
     gsn_case_name(c->path, r->case_name, sizeof r->case_name);
     GSN_CALL_GOTO(run_setup(r), rc, done);
-    GSN_CALL_GOTO(open_outputs(r), rc, done);
-    GSN_CALL_GOTO(
-        gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_COMPLETE, 0), rc,
-        done);
     struct sigaction previous[2];
     catch_stop_signals(1, previous);
+    if (c->geostatic && !options->restart)
+        rc = geostatic_stage(r);
+    if (rc == GSN_OK)
+        rc = open_outputs(r);
+    if (rc == GSN_OK)
+        rc = gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_COMPLETE, 0);
+    if (rc == GSN_OK && c->geostatic && !options->restart)
+        rc = write_geostatic_attributes(r);
+    if (rc != GSN_OK) {
+        catch_stop_signals(0, previous);
+        goto done;
+    }
     rc = run_loop(r);
     int late_signal = stop_signal; /* during the last step or its output */
     catch_stop_signals(0, previous);

@@ -35,6 +35,12 @@ enum { GSN_MAX_OUTPUT_TIMES = 1000 };
  * their cost: an update costs some 100 to 300 steps (docs/solver.md). */
 #define GSN_DEFAULT_REFERENCE_MIN_STEPS 500
 #define GSN_DEFAULT_MAX_PARTICLES 5000000 /* more needs --force */
+/* The geostatic stage (docs/solver.md, "The soil's own weight"): at rest
+ * when the unbalanced force is this fraction of the load, relaxed with this
+ * local damping, within this many steps. */
+#define GSN_DEFAULT_GEOSTATIC_RESIDUAL 1e-4
+#define GSN_DEFAULT_GEOSTATIC_DAMPING 0.8
+#define GSN_DEFAULT_GEOSTATIC_MAX_STEPS 200000
 
 /* Defaults of the economy keys (docs/economy.md). */
 #define GSN_DEFAULT_REFINE_BOX_DISTANCE 0.0 /* no transition layer */
@@ -178,12 +184,20 @@ struct gsn_case {
     double reference_every;     /* s between updates at most; 0: none */
     int reference_min_steps;    /* steps between two updates at least */
     int reference_update_line;  /* line of the key, 0 if absent */
-    double output_every;        /* s between frames; 0: none (output.times
-                                   alone) */
-    int output_every_default;   /* output.every and .times not given: every
-                                   is time_end / GSN_DEFAULT_FRAMES */
-    double history_every;       /* s between history rows besides the frames'
-                                   (0: at the frames only) */
+    /* geostatic: the dead loads (gravity, tractions) brought to equilibrium
+     * by damped relaxation before the loading stage, whose displacements
+     * start from zero there (docs/solver.md, "The soil's own weight") */
+    int geostatic;             /* 1: on */
+    double geostatic_residual; /* |f_ext - f_int + reactions| / |f_ext| */
+    double geostatic_damping;  /* Cundall's coefficient while relaxing */
+    long geostatic_max_steps;  /* the step budget */
+    int geostatic_line;        /* line of the key, 0 if absent */
+    double output_every;       /* s between frames; 0: none (output.times
+                                  alone) */
+    int output_every_default;  /* output.every and .times not given: every
+                                  is time_end / GSN_DEFAULT_FRAMES */
+    double history_every;      /* s between history rows besides the frames'
+                                  (0: at the frames only) */
     /* economy (docs/economy.md) */
     int refinement_count;
     struct gsn_refinement refinements[GSN_MAX_REFINEMENTS];

@@ -122,6 +122,12 @@ struct gsn_dataset_info {
  * geometry file of model.h5, the model.h5 of results.h5. */
 #define GSN_ATTR_GEOMETRY_HASH "geometry_hash"
 #define GSN_RESULTS_ATTR_MODEL_HASH "model_hash"
+/* The geostatic stage before the loading one (case key geostatic): its
+ * steps, the unbalanced force over the weight it ended with, and its wall
+ * time (s) */
+#define GSN_RESULTS_ATTR_GEOSTATIC_STEPS "geostatic_steps"
+#define GSN_RESULTS_ATTR_GEOSTATIC_RESIDUAL "geostatic_residual"
+#define GSN_RESULTS_ATTR_GEOSTATIC_SECONDS "geostatic_seconds"
 
 /* The restart checkpoint of results.h5: the group GSN_CHECKPOINT_GROUP with
  * attributes "time" (s) and "step", holding the whole state of the explicit

@@ -1,0 +1,57 @@
+#!/bin/sh
+# Issue 18, point 2: the geostatic stage. cases/geostatic_column.yaml (a
+# 1 x 1 x 4 m elastic column, rollers on its sides, 456 particles):
+# - solve says the body came to rest (steps, the unbalanced force against
+#   its limit) and results.h5 keeps the stage's steps, residual and time;
+# - check_geostatic.py: the frame at t = 0 holds sigma_v = rho g z and
+#   sigma_h = K0 sigma_v (layer means; the integral to 1e-3) with zero
+#   displacements, and the loading stage that follows stays at rest;
+# - stopped in the loading stage and continued with --restart, the run
+#   ends with the same bits as one never stopped (the stage is not run
+#   again: its state is in the checkpoint);
+# - a budget too small for the stage ends with exit 3 and the numbers; a
+#   stage with nothing to bring to rest, or beside a rigid body, exit 2.
+. ./cli_testing.sh
+sed "s|^geometry: .*|geometry: $(pwd)/cases/column.geo|" cases/geostatic_column.yaml >"$out/column.yaml"
+"$geoscni" run "$out/column.yaml" -o "$out/a" --no-pictures >"$out/log" 2>&1 ||
+    fail "the run failed: $(tail -3 "$out/log")"
+grep "^geostatic:" "$out/log"
+grep -q "^geostatic: at rest after [0-9]* steps (the dead loads raised over [0-9]*): unbalanced force [0-9.e-]* of the load (limit 0.0001)" "$out/log" ||
+    fail "no geostatic line: $(head -5 "$out/log")"
+/usr/bin/python3 check_geostatic.py "$out/a" || fail "check_geostatic.py"
+
+# Longer, stopped once the loading stage runs, then continued.
+sed -e "s|^time: .*|time: {end: 10.0, step: auto}|" -e "s|^output: .*|output: {every: 1.0}|" \
+    "$out/column.yaml" >"$out/long.yaml"
+"$geoscni" run "$out/long.yaml" -o "$out/straight" --no-pictures -q || fail "the long run failed"
+"$geoscni" pre "$out/long.yaml" -o "$out/stopped" -q || fail "pre failed"
+"$geoscni" solve "$out/long.yaml" -o "$out/stopped" -q 2>"$out/err" &
+solver=$!
+i=0
+rows() { if [ -f "$1" ]; then wc -l <"$1"; else echo 0; fi; }
+while [ "$(rows "$out/stopped/history.csv")" -lt 3 ] && [ $i -lt 600 ]; do
+    sleep 0.05
+    i=$((i + 1))
+done
+kill -TERM $solver
+wait $solver
+status=$?
+[ $status -eq 130 ] || echo "note: the solve ended before the signal ($status)"
+"$geoscni" solve "$out/long.yaml" -o "$out/stopped" --restart >"$out/restart.log" 2>&1 ||
+    [ $status -eq 0 ] || fail "the restart failed: $(tail -3 "$out/restart.log")"
+grep -q "^geostatic:" "$out/restart.log" && fail "the restart ran the geostatic stage again"
+cmp -s "$out/straight/history.csv" "$out/stopped/history.csv" ||
+    fail "the continued run's history.csv differs from the straight run's"
+
+# Errors.
+sed -e "s|^geostatic: on|geostatic: {max_steps: 40}|" "$out/column.yaml" >"$out/short.yaml"
+"$geoscni" run "$out/short.yaml" -o "$out/short" --no-pictures >"$out/short.log" 2>&1
+status=$?
+[ $status -eq 3 ] || fail "a stage over its budget ended with $status, not 3"
+grep -q "short.yaml: the body found no rest under its dead loads within 40 steps (geostatic.max_steps): the unbalanced force is still [0-9.e+-]* of the load" "$out/short.log" ||
+    fail "budget message: $(grep error "$out/short.log")"
+sed -e "s|^gravity: .*|gravity: [0, 0, 0]|" "$out/column.yaml" >"$out/weightless.yaml"
+"$geoscni" check "$out/weightless.yaml" >/dev/null 2>"$out/err"
+[ $? -eq 2 ] && grep -q "'geostatic' brings the dead loads to equilibrium, but there are none" "$out/err" ||
+    fail "a weightless geostatic case: $(cat "$out/err")"
+finish
