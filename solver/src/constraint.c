@@ -74,7 +74,6 @@ struct gsn_constraints {
     double *mass;          /* the lumped masses of gsn_constraints_set_mass */
     int factorized;        /* S_c formed and factorized with them */
     int boundary_only;     /* gsn_constraints_set_boundary_only */
-    int still;             /* gsn_constraints_hold_still: every target 0 */
     double factor_seconds; /* wall time spent factorizing, s */
     struct component_constraint component[3];
 };
@@ -782,11 +781,6 @@ void gsn_constraints_set_epoch(struct gsn_constraints *constraints, double time)
     constraints->epoch = time;
 }
 
-void gsn_constraints_hold_still(struct gsn_constraints *constraints, int still)
-{
-    constraints->still = still;
-}
-
 int gsn_constraints_ramping(const struct gsn_constraints *constraints,
                             double time)
 {
@@ -831,8 +825,6 @@ int gsn_constraints_apply(struct gsn_constraints *constraints,
     double factor = gsn_ramp_factor(constraints->ramp, kind, time);
     if (kind == GSN_FIELD_DISPLACEMENT)
         factor -= gsn_ramp_factor(constraints->ramp, kind, constraints->epoch);
-    if (constraints->still)
-        factor = 0.0;
     int work = 0;
     for (int c = 0; c < 3; ++c)
         work += constraints->component[c].count;

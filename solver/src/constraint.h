@@ -49,11 +49,6 @@ double gsn_ramp_factor(double ramp, enum gsn_constraint_field kind, double t);
 void gsn_constraints_set_epoch(struct gsn_constraints *constraints,
                                double time);
 
-/* With still set, every prescribed displacement, velocity and acceleration
- * is zero whatever the time: the boundaries that will move hold still
- * while the geostatic stage brings the dead loads to rest (solve.c). */
-void gsn_constraints_hold_still(struct gsn_constraints *constraints, int still);
-
 /* 1 while the prescribed velocities still rise (t < time.ramp): their
  * accelerations are then nonzero, so d and v are corrected every step. */
 int gsn_constraints_ramping(const struct gsn_constraints *constraints,

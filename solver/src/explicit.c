@@ -325,6 +325,18 @@ done:
     return rc;
 }
 
+void gsn_explicit_set_constraints(struct gsn_explicit *e,
+                                  struct gsn_constraints *constraints)
+{
+    e->constraints = constraints;
+    for (int i = 0; i < e->particle_count; ++i) {
+        e->constrained[i] = 0;
+        for (int k = 0; k < 3 && constraints; ++k)
+            if (gsn_constraints_is_constrained(constraints, i, k))
+                e->constrained[i] |= (unsigned char)(1 << k);
+    }
+}
+
 int gsn_explicit_create(const struct gsn_model *m,
                         const struct gsn_quadrature *quadrature,
                         const struct gsn_material_model *material,
@@ -424,10 +436,7 @@ int gsn_explicit_create(const struct gsn_model *m,
         GSN_CALL_GOTO(alloc_array((void **)&e->constrained, n3 / 3,
                                   sizeof *e->constrained),
                       rc, fail);
-        for (int i = 0; i < e->particle_count && constraints; ++i)
-            for (int k = 0; k < 3; ++k)
-                if (gsn_constraints_is_constrained(constraints, i, k))
-                    e->constrained[i] |= (unsigned char)(1 << k);
+        gsn_explicit_set_constraints(e, constraints);
     }
     for (size_t p = 0; p < main; ++p) {
         e->point_mass[p] = c->material.density * quadrature->point_weight[p];

@@ -206,6 +206,12 @@ int gsn_explicit_create(const struct gsn_model *m,
 /* Frees; NULL-safe, nulls the handle. */
 void gsn_explicit_destroy(struct gsn_explicit **e);
 
+/* The constraints the loop imposes from now on (borrowed, may be NULL; their
+ * masses set by the caller), with the components they hold: the geostatic
+ * stage swaps in those of the fixed components alone (solve.c). */
+void gsn_explicit_set_constraints(struct gsn_explicit *e,
+                                  struct gsn_constraints *constraints);
+
 /* Gives the loop its rigid bodies (NULL: none) and their forces on the
  * present state. */
 int gsn_explicit_set_contact(struct gsn_explicit *e,

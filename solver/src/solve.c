@@ -1742,8 +1742,9 @@ static int unbalanced_force(const struct run *r, double *work, double *residual)
 
 /* The geostatic stage (docs/solver.md, "The soil's own weight"): the dead
  * loads raised smoothly over four transits of a pressure wave across the
- * body, then the body relaxed with strong local damping, the boundaries
- * that will move held still, until the unbalanced force falls to
+ * body, then the body relaxed with strong local damping, the surfaces
+ * that will move free (only the fixed components held), until the
+ * unbalanced force falls to
  * geostatic.residual of the load. The loading stage starts from that stress
  * and material state with d = v = a = 0, at t = 0, its energies at zero. */
 static int geostatic_stage(struct run *r)
@@ -1769,12 +1770,27 @@ static int geostatic_stage(struct run *r)
     double damping = e->damping_local, residual = INFINITY;
     e->damping_local = c->geostatic_damping;
     e->damping_net = 1;
-    if (r->reference->constraints)
-        gsn_constraints_hold_still(r->reference->constraints, 1);
     long step = 0;
     int rc = GSN_OK;
     double *work = malloc(3 * sizeof(double) * ((size_t)e->particle_count + 1));
-    GSN_CHECK_GOTO(work, rc, GSN_ERR_MEMORY, done, "out of memory");
+    /* the surfaces that will move are free while the body settles: the
+     * constraints of the fixed components alone */
+    struct gsn_case *fixed_only = malloc(sizeof *fixed_only);
+    struct gsn_constraints *stage = NULL;
+    GSN_CHECK_GOTO(work && fixed_only, rc, GSN_ERR_MEMORY, done,
+                   "out of memory");
+    *fixed_only = *c;
+    for (int b = 0; b < fixed_only->boundary_count; ++b)
+        for (int k = 0; k < 3; ++k) {
+            fixed_only->boundaries[b].has_velocity[k] = 0;
+            fixed_only->boundaries[b].velocity[k] = 0.0;
+        }
+    GSN_CALL_GOTO(gsn_constraints_create(
+                      r->reference->model, fixed_only,
+                      &r->reference->quadrature->particle_values, NULL, &stage),
+                  rc, done);
+    GSN_CALL_GOTO(gsn_constraints_set_mass(stage, e->mass), rc, done);
+    gsn_explicit_set_constraints(e, stage);
     while (step < c->geostatic_max_steps) {
         GSN_CHECK_GOTO(!stop_signal, rc, GSN_ERR_INTERRUPTED, done,
                        "%s during the geostatic stage (step %ld): nothing "
@@ -1827,11 +1843,12 @@ static int geostatic_stage(struct run *r)
                step, ramp, residual, c->geostatic_residual,
                r->geostatic_seconds);
 done:
+    gsn_explicit_set_constraints(e, r->reference->constraints);
+    gsn_constraints_destroy(&stage);
+    free(fixed_only);
     free(work);
     e->damping_local = damping;
     e->damping_net = 0;
-    if (r->reference->constraints)
-        gsn_constraints_hold_still(r->reference->constraints, 0);
     return rc;
 }
 

@@ -1,6 +1,8 @@
 #!/bin/sh
 # Issue 18, point 2: the geostatic stage. cases/geostatic_column.yaml (a
 # 1 x 1 x 4 m elastic column, rollers on its sides, 456 particles):
+# - a surface with a prescribed velocity is free during the stage: the
+#   loading starts with no force on it and the weight on the bottom;
 # - solve says the body came to rest (steps, the unbalanced force against
 #   its limit) and results.h5 keeps the stage's steps, residual and time;
 # - check_geostatic.py: the frame at t = 0 holds sigma_v = rho g z and
@@ -42,6 +44,20 @@ status=$?
 grep -q "^geostatic:" "$out/restart.log" && fail "the restart ran the geostatic stage again"
 cmp -s "$out/straight/history.csv" "$out/stopped/history.csv" ||
     fail "the continued run's history.csv differs from the straight run's"
+
+# A surface that will move is free while the body settles: pushed from the
+# top, the column starts with no force on the top and its whole weight on
+# the bottom (1880 * 9.81 * 4 m^3).
+sed -e "s|^  ymax: {fix: \[y\]}|  ymax: {fix: [y]}\n  top: {velocity: [null, null, -0.01]}|" \
+    -e "s|^time: .*|time: {end: 0.2, step: auto, ramp: 0.1}|" \
+    "$out/column.yaml" >"$out/pushed.yaml"
+"$geoscni" run "$out/pushed.yaml" -o "$out/pushed" --no-pictures -q || fail "the pushed column failed"
+awk -F, 'NR == 1 { for (k = 1; k <= NF; ++k) column[$k] = k }
+         NR == 2 { top = $column["top_fz_N"]; bottom = $column["bottom_fz_N"] }
+         END { w = 1880 * 9.81 * 4; printf "t = 0: top %g N, bottom %g N (weight %g N)\n", top, bottom, w
+               d = bottom - w; if (d < 0) d = -d
+               exit !(top == 0 && d <= 1e-3 * w) }' "$out/pushed/history.csv" ||
+    fail "the pushed column does not start free at its top with its weight on its bottom"
 
 # Errors.
 sed -e "s|^geostatic: on|geostatic: {max_steps: 40}|" "$out/column.yaml" >"$out/short.yaml"
