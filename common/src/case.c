@@ -970,7 +970,7 @@ static int read_reference_update(struct reader *r, const yaml_node_t *root,
 static int read_geostatic(struct reader *r, const yaml_node_t *root,
                           struct gsn_case *c)
 {
-    static const char *const keys[] = {"residual", "damping", "max_steps",
+    static const char *const keys[] = {"residual", "damping", "max_steps", "k0",
                                        NULL};
     static const char *const words[] = {"off", "on", NULL};
     c->geostatic_residual = GSN_DEFAULT_GEOSTATIC_RESIDUAL;
@@ -1002,6 +1002,14 @@ static int read_geostatic(struct reader *r, const yaml_node_t *root,
                   "%s:%d: 'geostatic.damping' (the local damping while the "
                   "body settles) must be at least 0 and below 1, got %g",
                   r->path, line, c->geostatic_damping);
+        line = c->geostatic_line;
+        GSN_CALL(
+            read_number(r, node, "geostatic", "k0", &c->geostatic_k0, &line));
+        GSN_CHECK(c->geostatic_k0 >= 0.0 && c->geostatic_k0 <= 3.0,
+                  GSN_ERR_INPUT,
+                  "%s:%d: 'geostatic.k0' (the horizontal over the vertical "
+                  "stress of level ground) must be between 0 and 3, got %g",
+                  r->path, line, c->geostatic_k0);
         yaml_node_t *steps = mapping_find(r, node, "max_steps");
         if (steps) {
             int value = 0;
@@ -1335,9 +1343,9 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
     if (c->geostatic)
         fprintf(out,
                 "geostatic: {residual: %.17g, damping: %.17g, max_steps: "
-                "%ld}\n",
+                "%ld, k0: %.17g}\n",
                 c->geostatic_residual, c->geostatic_damping,
-                c->geostatic_max_steps);
+                c->geostatic_max_steps, c->geostatic_k0);
     fputs("output: {", out);
     if (c->output_every > 0.0)
         fprintf(out, "every: %.17g, ", c->output_every);

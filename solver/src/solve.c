@@ -1740,6 +1740,50 @@ static int unbalanced_force(const struct run *r, double *work, double *residual)
     return GSN_OK;
 }
 
+static double along(const double direction[3], const double x[3])
+{
+    return direction[0] * x[0] + direction[1] * x[1] + direction[2] * x[2];
+}
+
+/* geostatic.k0: the stress of level ground set at every point before the
+ * stage, sigma_v = rho |g| depth below the highest particle along gravity,
+ * sigma_h = K0 sigma_v (compression negative), and the material state set
+ * from it; the stage then starts with the dead loads at full value. */
+static int set_level_ground_stress(struct run *r)
+{
+    const struct gsn_case *c = r->c;
+    struct gsn_explicit *e = r->reference->loop;
+    const struct gsn_quadrature *q = r->reference->quadrature;
+    double g =
+        sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1] +
+             c->gravity[2] * c->gravity[2]);
+    GSN_CHECK(g > 0.0, GSN_ERR_INPUT,
+              "%s:%d: 'geostatic.k0' sets the stresses of the soil's weight: "
+              "give gravity",
+              c->path, c->geostatic_line);
+    double down[3] = {c->gravity[0] / g, c->gravity[1] / g, c->gravity[2] / g};
+    double top = INFINITY;
+    for (int i = 0; i < r->model.particle_count; ++i)
+        top = fmin(top, along(down, &r->model.position[3 * (size_t)i]));
+    for (int p = 0; p < q->point_count; ++p) {
+        double depth =
+            fmax(0.0, along(down, &q->point_position[3 * (size_t)p]) - top);
+        double vertical = -c->material.density * g * depth;
+        double horizontal = c->geostatic_k0 * vertical;
+        /* horizontal (I - n n) + vertical n n, Voigt xx yy zz xy yz xz */
+        static const int row[6] = {0, 1, 2, 0, 1, 0},
+                         col[6] = {0, 1, 2, 1, 2, 2};
+        for (int a = 0; a < 6; ++a)
+            e->stress[6 * (size_t)p + a] =
+                (row[a] == col[a] ? horizontal : 0.0) +
+                (vertical - horizontal) * down[row[a]] * down[col[a]];
+    }
+    GSN_CALL(gsn_material_initialize(r->material, e->main_point_count,
+                                     e->stress, e->state));
+    GSN_CALL(gsn_explicit_refresh(e));
+    return GSN_OK;
+}
+
 /* The geostatic stage (docs/solver.md, "The soil's own weight"): the dead
  * loads raised smoothly over four transits of a pressure wave across the
  * body, then the body relaxed with strong local damping, the surfaces
@@ -1767,6 +1811,10 @@ static int geostatic_stage(struct run *r)
     long ramp = (long)ceil(4.0 * extent / (wave * e->dt));
     if (ramp < 50)
         ramp = 50;
+    if (c->geostatic_k0 > 0.0) {
+        GSN_CALL(set_level_ground_stress(r));
+        ramp = 0; /* the stress is there: the loads too */
+    }
     double damping = e->damping_local, residual = INFINITY;
     e->damping_local = c->geostatic_damping;
     e->damping_net = 1;
@@ -1835,13 +1883,21 @@ static int geostatic_stage(struct run *r)
     r->geostatic_steps = step;
     r->geostatic_residual = residual;
     r->geostatic_seconds = now_seconds() - started;
-    if (!r->options->quiet)
-        printf("geostatic: at rest after %ld steps (the dead loads raised "
-               "over %ld): unbalanced force %.3g of the load (limit %.3g), "
-               "%.1f s; the loading starts from this state with zero "
-               "displacements\n",
-               step, ramp, residual, c->geostatic_residual,
+    if (!r->options->quiet) {
+        char how[96];
+        if (c->geostatic_k0 > 0.0)
+            snprintf(how, sizeof how,
+                     "the stresses of level ground set "
+                     "first, K0 = %g",
+                     c->geostatic_k0);
+        else
+            snprintf(how, sizeof how, "the dead loads raised over %ld", ramp);
+        printf("geostatic: at rest after %ld steps (%s): unbalanced force "
+               "%.3g of the load (limit %.3g), %.1f s; the loading starts from "
+               "this state with zero displacements\n",
+               step, how, residual, c->geostatic_residual,
                r->geostatic_seconds);
+    }
 done:
     gsn_explicit_set_constraints(e, r->reference->constraints);
     gsn_constraints_destroy(&stage);

@@ -2,7 +2,9 @@
 form of a level elastic column (test_geostatic.sh): the frame at t = 0
 carries sigma_v = -rho g (H - z) and sigma_h = K0 sigma_v with zero
 displacements, and the loading stage that follows keeps the column at rest.
-usage: check_geostatic.py OUTDIR"""
+With K0 given (geostatic.k0: the stresses of level ground set first) the
+layers hold that K0 instead of the elastic one.
+usage: check_geostatic.py OUTDIR [K0]"""
 import sys
 
 import h5py
@@ -11,7 +13,7 @@ import numpy as np
 RHO, G, H = 1880.0, 9.81, 4.0
 K, MU = 27.4e6, 9.15e6
 NU = (3 * K - 2 * MU) / (2 * (3 * K + MU))
-K0 = NU / (1 - NU)
+K0 = float(sys.argv[2]) if len(sys.argv) > 2 else NU / (1 - NU)
 SETTLEMENT = RHO * G * H * H / (2 * (K + 4 * MU / 3))  # of the top, m
 
 failures = 0

@@ -8,6 +8,8 @@
 # - check_geostatic.py: the frame at t = 0 holds sigma_v = rho g z and
 #   sigma_h = K0 sigma_v (layer means; the integral to 1e-3) with zero
 #   displacements, and the loading stage that follows stays at rest;
+# - with geostatic.k0 = 0.4 the layers keep that K0 (the stresses of level
+#   ground set first, then relaxed);
 # - stopped in the loading stage and continued with --restart, the run
 #   ends with the same bits as one never stopped (the stage is not run
 #   again: its state is in the checkpoint);
@@ -21,6 +23,15 @@ grep "^geostatic:" "$out/log"
 grep -q "^geostatic: at rest after [0-9]* steps (the dead loads raised over [0-9]*): unbalanced force [0-9.e-]* of the load (limit 0.0001)" "$out/log" ||
     fail "no geostatic line: $(head -5 "$out/log")"
 /usr/bin/python3 check_geostatic.py "$out/a" || fail "check_geostatic.py"
+
+# The K0 procedure: the stresses of level ground set first (K0 = 0.4, not
+# the elastic 0.538), which the relaxation keeps.
+sed -e "s|^geostatic: on|geostatic: {k0: 0.4}|" "$out/column.yaml" >"$out/k0.yaml"
+"$geoscni" run "$out/k0.yaml" -o "$out/k0" --no-pictures >"$out/k0.log" 2>&1 ||
+    fail "the K0 run failed: $(tail -3 "$out/k0.log")"
+grep -q "^geostatic: at rest after [0-9]* steps (the stresses of level ground set first, K0 = 0.4)" "$out/k0.log" ||
+    fail "no K0 line: $(grep geostatic "$out/k0.log")"
+/usr/bin/python3 check_geostatic.py "$out/k0" 0.4 || fail "check_geostatic.py with K0 0.4"
 
 # Longer, stopped once the loading stage runs, then continued.
 sed -e "s|^time: .*|time: {end: 10.0, step: auto}|" -e "s|^output: .*|output: {every: 1.0}|" \

@@ -191,6 +191,8 @@ struct gsn_case {
     double geostatic_residual; /* |f_ext - f_int + reactions| / |f_ext| */
     double geostatic_damping;  /* Cundall's coefficient while relaxing */
     long geostatic_max_steps;  /* the step budget */
+    double geostatic_k0;       /* > 0: the stresses set first as on level
+                                  ground, sigma_h = K0 sigma_v; 0: none */
     int geostatic_line;        /* line of the key, 0 if absent */
     double output_every;       /* s between frames; 0: none (output.times
                                   alone) */
