@@ -1864,6 +1864,9 @@ static int geostatic_stage(struct run *r)
     }
     if (!(residual <= c->geostatic_residual))
         GSN_CALL_GOTO(unbalanced_force(r, work, &residual), rc, done);
+    r->geostatic_steps = step;
+    r->geostatic_residual = residual;
+    r->geostatic_seconds = now_seconds() - started;
     GSN_CHECK_GOTO(
         residual <= c->geostatic_residual, rc, GSN_ERR_NUMERICAL, done,
         "%s: the body found no rest under its dead loads within %ld steps "
@@ -1880,9 +1883,6 @@ static int geostatic_stage(struct run *r)
     e->damping_work = 0.0;
     e->step = e->step_base = 0;
     e->time = e->time_base = 0.0;
-    r->geostatic_steps = step;
-    r->geostatic_residual = residual;
-    r->geostatic_seconds = now_seconds() - started;
     if (!r->options->quiet) {
         char how[96];
         if (c->geostatic_k0 > 0.0)
@@ -1906,6 +1906,22 @@ done:
     e->damping_local = damping;
     e->damping_net = 0;
     return rc;
+}
+
+/* A geostatic stage that found no rest keeps the state it reached: results.h5
+ * with that state as its one frame (the stage's time and step, its
+ * displacements: the mechanism), not complete, and the stage's numbers. */
+static int keep_failed_stage(struct run *r)
+{
+    char failure[1024]; /* a copy: writing may raise over the message */
+    snprintf(failure, sizeof failure, "%s", gsn_error_message());
+    gsn_error_clear();
+    GSN_CALL(open_outputs(r));
+    GSN_CALL(write_geostatic_attributes(r));
+    return gsn_error_raise(GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
+                           "%s; the state it reached is the one frame of %s "
+                           "(its displacements show the mechanism)",
+                           failure, r->results_path);
 }
 
 int gsn_solve_run(const struct gsn_case *c, const char *outdir,
@@ -1940,6 +1956,11 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
     catch_stop_signals(1, previous);
     if (c->geostatic && !options->restart)
         rc = geostatic_stage(r);
+    if (rc == GSN_ERR_NUMERICAL) {
+        rc = keep_failed_stage(r);
+        catch_stop_signals(0, previous);
+        goto done;
+    }
     if (rc == GSN_OK)
         rc = open_outputs(r);
     if (rc == GSN_OK)

@@ -13,7 +13,8 @@
 # - stopped in the loading stage and continued with --restart, the run
 #   ends with the same bits as one never stopped (the stage is not run
 #   again: its state is in the checkpoint);
-# - a budget too small for the stage ends with exit 3 and the numbers; a
+# - a budget too small for the stage ends with exit 3 and the numbers, and
+#   keeps the state it reached as the one frame of results.h5; a
 #   stage with nothing to bring to rest, or beside a rigid body, exit 2.
 . ./cli_testing.sh
 sed "s|^geometry: .*|geometry: $(pwd)/cases/column.geo|" cases/geostatic_column.yaml >"$out/column.yaml"
@@ -75,8 +76,10 @@ sed -e "s|^geostatic: on|geostatic: {max_steps: 40}|" "$out/column.yaml" >"$out/
 "$geoscni" run "$out/short.yaml" -o "$out/short" --no-pictures >"$out/short.log" 2>&1
 status=$?
 [ $status -eq 3 ] || fail "a stage over its budget ended with $status, not 3"
-grep -q "short.yaml: the body found no rest under its dead loads within 40 steps (geostatic.max_steps): the unbalanced force is still [0-9.e+-]* of the load" "$out/short.log" ||
+grep -q "short.yaml: the body found no rest under its dead loads within 40 steps (geostatic.max_steps): the unbalanced force is still [0-9.e+-]* of the load.*; the state it reached is the one frame of .*short/results.h5" "$out/short.log" ||
     fail "budget message: $(grep error "$out/short.log")"
+[ -s "$out/short/results.h5" ] && [ -s "$out/short/short.pvd" ] ||
+    fail "the failed stage did not keep its state (results.h5, and run's post of it)"
 sed -e "s|^gravity: .*|gravity: [0, 0, 0]|" "$out/column.yaml" >"$out/weightless.yaml"
 "$geoscni" check "$out/weightless.yaml" >/dev/null 2>"$out/err"
 [ $? -eq 2 ] && grep -q "'geostatic' brings the dead loads to equilibrium, but there are none" "$out/err" ||
