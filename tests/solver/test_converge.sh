@@ -74,6 +74,22 @@ grep -q "converge: the area of 'footing' changes with the spacing .*following th
 grep -q "warning: the area of 'footing' changes with the spacing .*--quantity peak_pressure" "$out/log6" ||
     fail "no warning that the footing's area follows the spacing"
 
+# Other quantities on the same levels (each found done): the pressure at a
+# settlement of 0.1 m lies below the peak, and the displacement under the
+# footing's middle, 0.1 m down, between 0.1 m and the footing's 0.25 m.
+"$geoscni" converge "$out/strip.yaml" -o "$out/c" --quantity pressure_at:0.1 \
+    --no-pictures >"$out/log7" 2>&1 || fail "pressure_at failed: $(tail -3 "$out/log7")"
+at=$(sed -n 's/^converge: level 3: pressure on .footing. at a settlement of 0.1 m = \([0-9.e+-]*\) Pa.*/\1/p' "$out/log7")
+peak=$(sed -n 's/^converge: level 3: peak pressure on .footing. = \([0-9.e+-]*\) Pa.*/\1/p' "$out/log")
+awk -v a="${at:-0}" -v p="${peak:-0}" 'BEGIN { exit !(a > 0.5 * p && a < p) }' ||
+    fail "the pressure at 0.1 m ($at Pa) is not below the peak ($peak Pa)"
+"$geoscni" converge "$out/strip.yaml" -o "$out/c" --quantity displacement_at:0.5,0.1,2.9 \
+    --no-pictures >"$out/log8" 2>&1 || fail "displacement_at failed: $(tail -3 "$out/log8")"
+u=$(sed -n 's/^converge: level 3: displacement at (0.5, 0.1, 2.9) m = \([0-9.e+-]*\) m.*/\1/p' "$out/log8")
+awk -v u="${u:-0}" 'BEGIN { exit !(u > 0.1 && u < 0.25) }' ||
+    fail "the displacement under the footing ($u m) is not between 0.1 and 0.25 m"
+echo "level 3: pressure at 0.1 m $at Pa (peak $peak Pa), displacement under the footing $u m"
+
 # Bad options.
 for bad in "--levels 2" "--levels 3.5" "--ratio 1.05" "--tol 2" "--quantity peak" \
     "--quantity force_at:-1" "--quantity peak_force:nowhere" "--quantity displacement_at:1,2"; do
