@@ -1919,8 +1919,9 @@ static int keep_failed_stage(struct run *r)
     GSN_CALL(open_outputs(r));
     GSN_CALL(write_geostatic_attributes(r));
     return gsn_error_raise(GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
-                           "%s; the state it reached is the one frame of %s "
-                           "(its displacements show the mechanism)",
+                           "in the geostatic stage: %s; the state it reached "
+                           "is the one frame of %s (its displacements show "
+                           "the mechanism)",
                            failure, r->results_path);
 }
 
