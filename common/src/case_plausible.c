@@ -101,19 +101,14 @@ int gsn_case_warn_implausible(const struct gsn_case *c, FILE *out)
                  m->bulk_modulus, MODULUS_RATIO_HIGH, m->shear_modulus);
         warn(out, c, c->material_line.bulk_modulus, text, &count);
     }
-    if (m->has_plasticity && m->dp_from_mohr_coulomb && m->cohesion > 0.0 &&
-        m->cohesion < STRENGTH_LOW) {
+    /* the strength as given: the cohesion, or R of the cone */
+    const char *strength_key = m->dp_from_mohr_coulomb ? "cohesion" : "R";
+    double strength = m->dp_from_mohr_coulomb ? m->cohesion : m->dp_R;
+    if (m->has_plasticity && strength > 0.0 && strength < STRENGTH_LOW) {
         snprintf(text, sizeof text,
-                 "material.drucker_prager.cohesion = %g Pa is a very weak "
-                 "soil (below %g Pa): if it is given in kPa, write %g",
-                 m->cohesion, STRENGTH_LOW, m->cohesion * 1e3);
-        warn(out, c, c->material_line.R, text, &count);
-    } else if (m->has_plasticity && !m->dp_from_mohr_coulomb && m->dp_R > 0.0 &&
-               m->dp_R < STRENGTH_LOW) {
-        snprintf(text, sizeof text,
-                 "material.drucker_prager.R = %g Pa is a very weak soil "
+                 "material.drucker_prager.%s = %g Pa is a very weak soil "
                  "(below %g Pa): if it is given in kPa, write %g",
-                 m->dp_R, STRENGTH_LOW, m->dp_R * 1e3);
+                 strength_key, strength, STRENGTH_LOW, strength * 1e3);
         warn(out, c, c->material_line.R, text, &count);
     }
     return count;
