@@ -186,15 +186,15 @@ static int estimate_levels(const struct level *levels, int count,
 }
 
 /* A force on a surface whose area follows the spacing (a slab two spacings
- * thick) does not converge to anything: *changed says so. */
+ * thick) does not converge to anything: *changed says so, and the message
+ * whether the study turns to the pressure (switching) or warns. */
 static int area_changes(const struct level *levels, int count,
-                        const struct gsn_quantity *q, int *changed)
+                        const char *surface, int switching, int *changed)
 {
     double first = 0.0, area = 0.0;
     *changed = 0;
     for (int i = 0; i < count && !*changed; ++i) {
-        GSN_CALL(
-            gsn_quantity_surface_area(levels[i].folder, q->surface, &area));
+        GSN_CALL(gsn_quantity_surface_area(levels[i].folder, surface, &area));
         if (i == 0)
             first = area;
         else if (fabs(area - first) > 0.01 * first) {
@@ -202,11 +202,11 @@ static int area_changes(const struct level *levels, int count,
                     "%s: the area of '%s' changes with the spacing (%.4g m^2 "
                     "at level 1, %.4g m^2 at level %d): its force follows "
                     "the area, not the discretization; %s\n",
-                    q->per_area ? "converge" : "warning", q->surface, first,
-                    area, i + 1,
-                    q->per_area ? "following the pressure on it instead"
-                                : "follow the pressure instead (--quantity "
-                                  "peak_pressure)");
+                    switching ? "converge" : "warning", surface, first, area,
+                    i + 1,
+                    switching ? "following the pressure on it instead"
+                              : "follow the pressure instead (--quantity "
+                                "peak_pressure)");
             *changed = 1;
         }
     }
@@ -351,8 +351,8 @@ int command_converge(const struct arguments *a)
         /* the default quantity turns into the pressure; one asked for is
          * kept, with the warning */
         int changed = 0;
-        q.per_area = !a->quantity;
-        GSN_CALL(area_changes(levels, count, &q, &changed));
+        GSN_CALL(
+            area_changes(levels, count, q.surface, !a->quantity, &changed));
         q.per_area = changed && !a->quantity;
         if (q.per_area) {
             GSN_CALL(gsn_quantity_resolve(&c, &q, description,
