@@ -5,6 +5,7 @@
  * back to the same values bit for bit, and a refinement changes pre's
  * signature (a graded model is not mistaken for a uniform one). The
  * malformed variants are in cases/bad/ with their messages. */
+#include "case_testing.h"
 #include "geoscni/case.h"
 #include "geoscni/error.h"
 #include "geoscni/schema.h"
@@ -48,22 +49,6 @@ static void check_economy(const struct gsn_case *c)
     TEST_INT(c->output_time_count, 2);
     TEST_NEAR(c->output_times[0], 0.25, 0.0);
     TEST_NEAR(c->output_times[1], 1.2, 0.0);
-}
-
-/* Writes c as resolved YAML and loads it back into again. */
-static void round_trip(const struct gsn_case *c, struct gsn_case *again)
-{
-    char path[] = "/tmp/geoscni-test-case-economy-XXXXXX";
-    int fd = mkstemp(path);
-    TEST_TRUE(fd >= 0);
-    FILE *out = fdopen(fd, "w");
-    TEST_INT(gsn_case_write_yaml(c, out), GSN_OK);
-    fclose(out);
-    int rc = gsn_case_load(path, again);
-    if (rc != GSN_OK)
-        gsn_error_print(stderr);
-    TEST_INT(rc, GSN_OK);
-    remove(path);
 }
 
 int main(void)
