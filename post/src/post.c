@@ -400,6 +400,9 @@ static const struct {
     {GSN_VTK_PICTURE_CLIP_UZ, "clip_uz", "u_z"},
     {GSN_VTK_PICTURE_CLIP_EQUIVALENT_STRESS, "clip_equivalent_stress",
      "equivalent stress"},
+    {GSN_VTK_PICTURE_CLIP_DISPLACEMENT, "clip_displacement", "|u|"},
+    {GSN_VTK_PICTURE_CLIP_EQUIVALENT_PLASTIC_STRAIN,
+     "clip_equivalent_plastic_strain", "equivalent plastic strain"},
 };
 
 /* Renders the pictures of a frame: damage on the body at the chosen frames;

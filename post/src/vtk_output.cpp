@@ -144,7 +144,7 @@ vtkSmartPointer<vtkLookupTable> rainbow(double low, double high)
 struct picture_spec {
     const char *bar_title;
     int field;     // frame field
-    int component; // column of the field
+    int component; // column of the field; -1: the length of its row
     double scale;  // shown value = scale * field value
     bool clip;
 };
@@ -161,6 +161,11 @@ picture_spec picture_spec_of(int picture)
     case GSN_VTK_PICTURE_CLIP_EQUIVALENT_STRESS:
         return {"equivalent stress [kPa]", GSN_FRAME_EQUIVALENT_STRESS, 0, 1e-3,
                 true};
+    case GSN_VTK_PICTURE_CLIP_DISPLACEMENT:
+        return {"|u| [m]", GSN_FRAME_DISPLACEMENT, -1, 1.0, true};
+    case GSN_VTK_PICTURE_CLIP_EQUIVALENT_PLASTIC_STRAIN:
+        return {"equivalent plastic strain [-]",
+                GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN, 0, 1.0, true};
     default:
         return {"damage [-]", GSN_FRAME_DAMAGE, 0, 1.0, false};
     }
@@ -229,9 +234,16 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
     vtkNew<vtkDoubleArray> shown;
     shown->SetName("shown");
     shown->SetNumberOfTuples(n);
-    for (vtkIdType i = 0; i < n; ++i)
-        shown->SetValue(i,
-                        spec.scale * source->GetComponent(i, spec.component));
+    for (vtkIdType i = 0; i < n; ++i) {
+        double value = 0.0;
+        if (spec.component >= 0)
+            value = source->GetComponent(i, spec.component);
+        else
+            for (int k = 0; k < source->GetNumberOfComponents(); ++k)
+                value += source->GetComponent(i, k) * source->GetComponent(i, k);
+        shown->SetValue(i, spec.scale * (spec.component >= 0 ? value
+                                                             : std::sqrt(value)));
+    }
     vtkNew<vtkUnstructuredGrid> copy;
     copy->ShallowCopy(grid);
     copy->GetPointData()->AddArray(shown);

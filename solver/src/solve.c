@@ -99,6 +99,8 @@ struct run {
     /* the geostatic stage of this run (a fresh run of a case with it) */
     long geostatic_steps;
     double geostatic_residual, geostatic_seconds;
+    double geostatic_displacement; /* the largest at a particle, m */
+    int geostatic_rested;
 };
 
 static double now_seconds(void)
@@ -1709,6 +1711,11 @@ static int write_geostatic_attributes(struct run *r)
                                       r->geostatic_residual));
     GSN_CALL(gsn_h5_attr_write_double(
         r->results, GSN_RESULTS_ATTR_GEOSTATIC_SECONDS, r->geostatic_seconds));
+    GSN_CALL(gsn_h5_attr_write_double(r->results,
+                                      GSN_RESULTS_ATTR_GEOSTATIC_DISPLACEMENT,
+                                      r->geostatic_displacement));
+    GSN_CALL(gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_GEOSTATIC_RESTED,
+                                   r->geostatic_rested));
     return GSN_OK;
 }
 
@@ -1716,7 +1723,8 @@ static int write_geostatic_attributes(struct run *r)
  * = M^-1 (f_ext - f_int) projected onto the constraints (the supports'
  * reaction included, the local damping not: the loop's damping acts on the
  * force before the reaction, so near held faces it does not vanish at
- * rest), over the components the loop moves; work: 3 n doubles. */
+ * rest), over the components the loop moves, with the constraints it
+ * imposes now; work: 3 n doubles. */
 static int unbalanced_force(const struct run *r, double *work, double *residual)
 {
     const struct gsn_explicit *e = r->reference->loop;
@@ -1725,9 +1733,9 @@ static int unbalanced_force(const struct run *r, double *work, double *residual)
         work[at] = (int)(at % 3) == e->held_axis
                        ? 0.0
                        : (e->f_ext[at] - e->f_int[at]) / e->mass[at / 3];
-    if (r->reference->constraints)
+    if (e->constraints)
         GSN_CALL(
-            gsn_constraints_apply(r->reference->constraints,
+            gsn_constraints_apply(e->constraints,
                                   &r->reference->quadrature->particle_values,
                                   GSN_FIELD_ACCELERATION, e->time, work, NULL));
     double unbalanced = 0.0, load = 0.0;
@@ -1784,13 +1792,51 @@ static int set_level_ground_stress(struct run *r)
     return GSN_OK;
 }
 
+/* The largest displacement at a particle, m; work: 3 n doubles. */
+static double largest_displacement(const struct gsn_explicit *e, double *work)
+{
+    gsn_explicit_particle_displacement(e, work);
+    double largest = 0.0;
+    for (int i = 0; i < e->particle_count; ++i) {
+        const double *u = work + 3 * (size_t)i;
+        largest = fmax(largest, sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+    }
+    return largest;
+}
+
+/* A body that does not settle: measured over windows of
+ * MECHANISM_WINDOW_TRANSITS transits of a pressure wave, the unbalanced
+ * force fell by less than a tenth and the largest displacement grew at
+ * least as fast as in the window before, MECHANISM_WINDOWS windows in a row
+ * (docs/solver.md, "The soil's own weight"). A body settling under strong
+ * damping slows down; a mechanism keeps its unbalanced force and speeds up. */
+enum { MECHANISM_WINDOW_TRANSITS = 5, MECHANISM_WINDOWS = 3 };
+
+struct mechanism_watch {
+    double residual, displacement, growth; /* at the last window's end */
+    int windows;                           /* in a row so far */
+};
+
+static int mechanism_found(struct mechanism_watch *w, double residual,
+                           double displacement)
+{
+    double growth = displacement - w->displacement;
+    int moving = residual > 0.9 * w->residual && w->growth > 0.0 &&
+                 growth >= 0.98 * w->growth;
+    w->windows = moving ? w->windows + 1 : 0;
+    w->residual = residual;
+    w->displacement = displacement;
+    w->growth = growth;
+    return w->windows >= MECHANISM_WINDOWS;
+}
+
 /* The geostatic stage (docs/solver.md, "The soil's own weight"): the dead
  * loads raised smoothly over four transits of a pressure wave across the
  * body, then the body relaxed with strong local damping, the surfaces
  * that will move free (only the fixed components held), until the
- * unbalanced force falls to
- * geostatic.residual of the load. The loading stage starts from that stress
- * and material state with d = v = a = 0, at t = 0, its energies at zero. */
+ * unbalanced force falls to geostatic.residual of the load. It fails (exit
+ * 3) when the step budget runs out or the body moves as a mechanism
+ * (mechanism_found). */
 static int geostatic_stage(struct run *r)
 {
     const struct gsn_case *c = r->c;
@@ -1808,9 +1854,11 @@ static int geostatic_stage(struct run *r)
     const struct gsn_material *m = &c->material;
     double wave =
         sqrt((m->bulk_modulus + 4.0 / 3.0 * m->shear_modulus) / m->density);
-    long ramp = (long)ceil(4.0 * extent / (wave * e->dt));
-    if (ramp < 50)
-        ramp = 50;
+    long transit = (long)ceil(extent / (wave * e->dt));
+    long ramp = 4 * transit < 50 ? 50 : 4 * transit;
+    long window = MECHANISM_WINDOW_TRANSITS * transit;
+    if (window < 50)
+        window = 50;
     if (c->geostatic_k0 > 0.0) {
         GSN_CALL(set_level_ground_stress(r));
         ramp = 0; /* the stress is there: the loads too */
@@ -1819,7 +1867,8 @@ static int geostatic_stage(struct run *r)
     e->damping_local = c->geostatic_damping;
     e->damping_net = 1;
     long step = 0;
-    int rc = GSN_OK;
+    int rc = GSN_OK, mechanism = 0;
+    struct mechanism_watch watch = {INFINITY, 0.0, 0.0, 0};
     double *work = malloc(3 * sizeof(double) * ((size_t)e->particle_count + 1));
     /* the surfaces that will move are free while the body settles: the
      * constraints of the fixed components alone */
@@ -1854,6 +1903,13 @@ static int geostatic_stage(struct run *r)
             if (residual <= c->geostatic_residual)
                 break;
         }
+        if (step > ramp && (step - ramp) % window == 0) {
+            GSN_CALL_GOTO(unbalanced_force(r, work, &residual), rc, done);
+            mechanism = mechanism_found(&watch, residual,
+                                        largest_displacement(e, work));
+            if (mechanism)
+                break;
+        }
         if (!r->options->quiet && now_seconds() - last_print >= 10.0) {
             fprintf(stderr,
                     "geostatic: step %ld, unbalanced force %.3g of the load "
@@ -1862,27 +1918,28 @@ static int geostatic_stage(struct run *r)
             last_print = now_seconds();
         }
     }
-    if (!(residual <= c->geostatic_residual))
+    if (!(residual <= c->geostatic_residual) && !mechanism)
         GSN_CALL_GOTO(unbalanced_force(r, work, &residual), rc, done);
     r->geostatic_steps = step;
     r->geostatic_residual = residual;
     r->geostatic_seconds = now_seconds() - started;
+    r->geostatic_displacement = largest_displacement(e, work);
+    r->geostatic_rested = residual <= c->geostatic_residual;
     GSN_CHECK_GOTO(
-        residual <= c->geostatic_residual, rc, GSN_ERR_NUMERICAL, done,
+        !mechanism, rc, GSN_ERR_NUMERICAL, done,
+        "%s: the body does not come to rest under its dead loads: over the "
+        "last %ld steps its unbalanced force stayed near %.3g of the load and "
+        "its displacements grew ever faster (%.3g m at step %ld): a mechanism "
+        "(a factor of safety below 1)",
+        c->path, MECHANISM_WINDOWS * window, residual,
+        r->geostatic_displacement, step);
+    GSN_CHECK_GOTO(
+        r->geostatic_rested, rc, GSN_ERR_NUMERICAL, done,
         "%s: the body found no rest under its dead loads within %ld steps "
         "(geostatic.max_steps): the unbalanced force is still %.3g of the "
         "load (geostatic.residual %.3g); it may not stand (a factor of "
         "safety below 1), or it needs more steps",
         c->path, step, residual, c->geostatic_residual);
-    size_t n3 = 3 * (size_t)e->particle_count;
-    memset(e->displacement, 0, n3 * sizeof(double));
-    memset(e->previous_displacement, 0, n3 * sizeof(double));
-    memset(e->velocity, 0, n3 * sizeof(double));
-    memset(e->acceleration, 0, n3 * sizeof(double));
-    e->kinetic_energy = e->internal_energy = e->external_work = 0.0;
-    e->damping_work = 0.0;
-    e->step = e->step_base = 0;
-    e->time = e->time_base = 0.0;
     if (!r->options->quiet) {
         char how[96];
         if (c->geostatic_k0 > 0.0)
@@ -1893,10 +1950,14 @@ static int geostatic_stage(struct run *r)
         else
             snprintf(how, sizeof how, "the dead loads raised over %ld", ramp);
         printf("geostatic: at rest after %ld steps (%s): unbalanced force "
-               "%.3g of the load (limit %.3g), %.1f s; the loading starts from "
-               "this state with zero displacements\n",
+               "%.3g of the load (limit %.3g), largest displacement %.3g m, "
+               "%.1f s%s\n",
                step, how, residual, c->geostatic_residual,
-               r->geostatic_seconds);
+               r->geostatic_displacement, r->geostatic_seconds,
+               r->options->geostatic_only
+                   ? ""
+                   : "; the loading starts from this state with zero "
+                     "displacements");
     }
 done:
     gsn_explicit_set_constraints(e, r->reference->constraints);
@@ -1906,6 +1967,21 @@ done:
     e->damping_local = damping;
     e->damping_net = 0;
     return rc;
+}
+
+/* The loading stage after a geostatic one starts from its stress and
+ * material state with d = v = a = 0, at t = 0, its energies at zero. */
+static void start_loading_stage(struct gsn_explicit *e)
+{
+    size_t n3 = 3 * (size_t)e->particle_count;
+    memset(e->displacement, 0, n3 * sizeof(double));
+    memset(e->previous_displacement, 0, n3 * sizeof(double));
+    memset(e->velocity, 0, n3 * sizeof(double));
+    memset(e->acceleration, 0, n3 * sizeof(double));
+    e->kinetic_energy = e->internal_energy = e->external_work = 0.0;
+    e->damping_work = 0.0;
+    e->step = e->step_base = 0;
+    e->time = e->time_base = 0.0;
 }
 
 /* A geostatic stage that found no rest keeps the state it reached: results.h5
@@ -1923,6 +1999,16 @@ static int keep_failed_stage(struct run *r)
                            "is the one frame of %s (its displacements show "
                            "the mechanism)",
                            failure, r->results_path);
+}
+
+/* The geostatic stage alone (gsn_solve_options.geostatic_only), at rest:
+ * results.h5 complete with its end state as the one frame. */
+static int keep_stage_alone(struct run *r)
+{
+    GSN_CALL(open_outputs(r));
+    GSN_CALL(write_geostatic_attributes(r));
+    GSN_CALL(gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_COMPLETE, 1));
+    return GSN_OK;
 }
 
 int gsn_solve_run(const struct gsn_case *c, const char *outdir,
@@ -1952,6 +2038,11 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
                                 "history.csv"),
                   rc, done);
     gsn_case_name(c->path, r->case_name, sizeof r->case_name);
+    GSN_CHECK_GOTO(!options->geostatic_only || (c->geostatic && !options->restart),
+                   rc, GSN_ERR_INPUT, done,
+                   "%s: the geostatic stage alone needs the case's geostatic "
+                   "key and a fresh run",
+                   c->path);
     GSN_CALL_GOTO(run_setup(r), rc, done);
     struct sigaction previous[2];
     catch_stop_signals(1, previous);
@@ -1962,6 +2053,13 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
         catch_stop_signals(0, previous);
         goto done;
     }
+    if (rc == GSN_OK && options->geostatic_only) {
+        rc = keep_stage_alone(r);
+        catch_stop_signals(0, previous);
+        goto done;
+    }
+    if (rc == GSN_OK && c->geostatic && !options->restart)
+        start_loading_stage(r->reference->loop);
     if (rc == GSN_OK)
         rc = open_outputs(r);
     if (rc == GSN_OK)

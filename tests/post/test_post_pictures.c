@@ -82,6 +82,8 @@ int main(void)
         "pictures/clip_uy_frame_0006.png",
         "pictures/clip_uz_frame_0006.png",
         "pictures/clip_equivalent_stress_frame_0006.png",
+        "pictures/clip_displacement_frame_0006.png",
+        "pictures/clip_equivalent_plastic_strain_frame_0006.png",
         "plots/energy.png",
         "plots/load_settlement_footing.png"};
     for (size_t k = 0; k < sizeof pictures / sizeof pictures[0]; ++k) {
@@ -121,6 +123,8 @@ int main(void)
         "pictures/clip_uy_frame_0006.png",
         "pictures/clip_uz_frame_0006.png",
         "pictures/clip_equivalent_stress_frame_0006.png",
+        "pictures/clip_displacement_frame_0006.png",
+        "pictures/clip_equivalent_plastic_strain_frame_0006.png",
         "plots/load_settlement_gone.png"};
     for (size_t k = 0; k < sizeof gone / sizeof gone[0]; ++k) {
         TEST_TRUE(file_size(folder, gone[k]) < 0);

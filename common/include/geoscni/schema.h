@@ -128,6 +128,11 @@ struct gsn_dataset_info {
 #define GSN_RESULTS_ATTR_GEOSTATIC_STEPS "geostatic_steps"
 #define GSN_RESULTS_ATTR_GEOSTATIC_RESIDUAL "geostatic_residual"
 #define GSN_RESULTS_ATTR_GEOSTATIC_SECONDS "geostatic_seconds"
+/* ... the largest displacement at a particle the stage ended with (m), and
+ * whether it came to rest (1) or not (0: no rest within the step budget, or
+ * displacements that kept growing) */
+#define GSN_RESULTS_ATTR_GEOSTATIC_DISPLACEMENT "geostatic_displacement"
+#define GSN_RESULTS_ATTR_GEOSTATIC_RESTED "geostatic_rested"
 
 /* The restart checkpoint of results.h5: the group GSN_CHECKPOINT_GROUP with
  * attributes "time" (s) and "step", holding the whole state of the explicit

@@ -18,6 +18,9 @@ struct gsn_solve_options {
     int start_over; /* replace an interrupted run's results (else refused) */
     double progress_seconds; /* between progress lines into a file (0: the
                                 default, 10 s) */
+    int geostatic_only; /* the geostatic stage alone: results.h5 holds its
+                           end state (displacements not reset) as the one
+                           frame; exit 3 if it found no rest (geoscni fos) */
 };
 
 /* Reads OUTDIR/model.h5, runs the case, writes OUTDIR/results.h5 and
