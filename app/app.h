@@ -30,7 +30,14 @@ int app_lock_outdir(const char *outdir);
 int app_run_case(const struct arguments *a, const struct gsn_case *c,
                  const char *outdir, int with_post, int *solved);
 
+/* pre of one case into outdir, skipped where its model.h5 is up to date */
+int app_pre(const struct arguments *a, const struct gsn_case *c,
+            const char *outdir);
+
 /* geoscni converge (app/converge.c) */
 int command_converge(const struct arguments *a);
+
+/* geoscni fos (app/fos.c) */
+int command_fos(const struct arguments *a);
 
 #endif

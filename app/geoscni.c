@@ -1,5 +1,5 @@
 /* geoscni: the command-line program. Subcommands pre, solve, post, run,
- * converge and check; exit status 0 ok, 2 bad input, 3 numerical failure
+ * converge, fos and check; exit status 0 ok, 2 bad input, 3 numerical failure
  * (DESIGN.md). */
 #include "app.h"
 #include "geoscni/case.h"
@@ -367,11 +367,18 @@ static int run_skipped(const struct arguments *a, const char *stage,
     return 1;
 }
 
-int app_run_case(const struct arguments *a, const struct gsn_case *c,
-                 const char *outdir, int with_post, int *solved)
+int app_pre(const struct arguments *a, const struct gsn_case *c,
+            const char *outdir)
 {
     if (!run_skipped(a, "pre", c, outdir))
         GSN_CALL(run_pre(c, outdir, a));
+    return GSN_OK;
+}
+
+int app_run_case(const struct arguments *a, const struct gsn_case *c,
+                 const char *outdir, int with_post, int *solved)
+{
+    GSN_CALL(app_pre(a, c, outdir));
     /* --restart over several cases: those an interrupt kept from starting
      * have no results to continue and start from the beginning */
     char results[GSN_PATH_SIZE], part[GSN_PATH_SIZE];
@@ -522,6 +529,23 @@ static const struct command commands[] = {
      OPTION_OUTPUT | OPTION_FORCE | OPTION_NO_PICTURES | OPTION_THREADS |
          OPTION_LEVELS | OPTION_RATIO | OPTION_QUANTITY | OPTION_TOLERANCE |
          OPTION_FINEST},
+    {"fos", "geoscni fos CASE.yaml [-o OUTDIR] [--tol T] [--rerun]",
+     "the factor of safety of the body under its own weight by strength "
+     "reduction (c and tan(phi) divided by trial factors): a line 'factor "
+     "of safety: X.XX', OUTDIR/fos.csv and the mechanism's pictures in "
+     "OUTDIR/mechanism",
+     "  -o, --output DIR output folder, a folder per trial in trials/ "
+     "(default: CASE_fos)\n"
+     "  --tol T          the width of the final bracket: the factor the body "
+     "stands at and the one it fails at lie T apart at most (default "
+     "0.01)\n"
+     "  --rerun          run every trial again (else those in fos.csv made "
+     "from the same model and strength are kept)\n"
+     "  --force          as for pre and solve\n"
+     "  --no-pictures    no pictures of the mechanism\n" THREADS_HELP,
+     command_fos, 1, 1, "file",
+     OPTION_OUTPUT | OPTION_FORCE | OPTION_NO_PICTURES | OPTION_THREADS |
+         OPTION_TOLERANCE | OPTION_RERUN},
     {"check", "geoscni check CASE.yaml [CASE2.yaml ...]",
      "check case files (also against their geometries, meshing their "
      "surfaces) and print their resolved parameters, the particle estimate "

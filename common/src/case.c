@@ -1715,3 +1715,19 @@ void gsn_drucker_prager_fit(enum gsn_dp_fit fit, double cohesion,
     *R = sqrt(2.0) * k;
     *beta = sqrt(2.0) * b;
 }
+
+void gsn_material_reduce_strength(const struct gsn_material *m, double factor,
+                                  struct gsn_material *reduced)
+{
+    const double degree = acos(-1.0) / 180.0;
+    *reduced = *m;
+    reduced->has_damage = 0;
+    reduced->cohesion = m->cohesion / factor;
+    reduced->friction_angle =
+        atan(tan(m->friction_angle * degree) / factor) / degree;
+    reduced->dilation_angle = fmin(m->dilation_angle, reduced->friction_angle);
+    gsn_drucker_prager_fit(m->dp_fit, reduced->cohesion,
+                           reduced->friction_angle, reduced->dilation_angle,
+                           &reduced->dp_alpha, &reduced->dp_R,
+                           &reduced->dp_dilatancy);
+}

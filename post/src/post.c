@@ -622,8 +622,9 @@ static int post_plots(const char *outdir, const struct gsn_case *c,
     GSN_CALL(gsn_history_read(path, &history));
     int rc = GSN_OK;
     double *values = NULL;
-    if (history.row_count == 0) {
-        fprintf(stderr, "geoscni post: no plots: %s has no rows\n", path);
+    if (history.row_count < 2) { /* a curve needs two points */
+        fprintf(stderr, "geoscni post: no plots: %s has %d row%s\n", path,
+                history.row_count, history.row_count == 1 ? "" : "s");
         goto done;
     }
     values = malloc(4 * (size_t)history.row_count * sizeof(double));

@@ -240,9 +240,10 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
             value = source->GetComponent(i, spec.component);
         else
             for (int k = 0; k < source->GetNumberOfComponents(); ++k)
-                value += source->GetComponent(i, k) * source->GetComponent(i, k);
-        shown->SetValue(i, spec.scale * (spec.component >= 0 ? value
-                                                             : std::sqrt(value)));
+                value +=
+                    source->GetComponent(i, k) * source->GetComponent(i, k);
+        shown->SetValue(
+            i, spec.scale * (spec.component >= 0 ? value : std::sqrt(value)));
     }
     vtkNew<vtkUnstructuredGrid> copy;
     copy->ShallowCopy(grid);

@@ -1653,7 +1653,8 @@ static int run_setup(struct run *r)
                method_text(c, method, sizeof method),
                gsn_quadrature_bytes(r->reference->quadrature) / 1e6,
                now_seconds() - t0, r->total_steps);
-    if (r->reference->quadrature->held_fallback_count > 0)
+    if (r->reference->quadrature->held_fallback_count > 0 &&
+        !r->options->setup_warned)
         fprintf(stderr,
                 "warning: %d of %d quadrature points on held surfaces keep "
                 "Psi_I: the held particles near them do not span them (a "
@@ -1714,8 +1715,8 @@ static int write_geostatic_attributes(struct run *r)
     GSN_CALL(gsn_h5_attr_write_double(r->results,
                                       GSN_RESULTS_ATTR_GEOSTATIC_DISPLACEMENT,
                                       r->geostatic_displacement));
-    GSN_CALL(gsn_h5_attr_write_int(r->results, GSN_RESULTS_ATTR_GEOSTATIC_RESTED,
-                                   r->geostatic_rested));
+    GSN_CALL(gsn_h5_attr_write_int(
+        r->results, GSN_RESULTS_ATTR_GEOSTATIC_RESTED, r->geostatic_rested));
     return GSN_OK;
 }
 
@@ -1734,10 +1735,9 @@ static int unbalanced_force(const struct run *r, double *work, double *residual)
                        ? 0.0
                        : (e->f_ext[at] - e->f_int[at]) / e->mass[at / 3];
     if (e->constraints)
-        GSN_CALL(
-            gsn_constraints_apply(e->constraints,
-                                  &r->reference->quadrature->particle_values,
-                                  GSN_FIELD_ACCELERATION, e->time, work, NULL));
+        GSN_CALL(gsn_constraints_apply(
+            e->constraints, &r->reference->quadrature->particle_values,
+            GSN_FIELD_ACCELERATION, e->time, work, NULL));
     double unbalanced = 0.0, load = 0.0;
     for (size_t at = 0; at < n3; ++at) {
         double f = e->mass[at / 3] * work[at];
@@ -2038,7 +2038,8 @@ int gsn_solve_run(const struct gsn_case *c, const char *outdir,
                                 "history.csv"),
                   rc, done);
     gsn_case_name(c->path, r->case_name, sizeof r->case_name);
-    GSN_CHECK_GOTO(!options->geostatic_only || (c->geostatic && !options->restart),
+    GSN_CHECK_GOTO(!options->geostatic_only ||
+                       (c->geostatic && !options->restart),
                    rc, GSN_ERR_INPUT, done,
                    "%s: the geostatic stage alone needs the case's geostatic "
                    "key and a fresh run",

@@ -131,6 +131,14 @@ struct gsn_material {
     enum gsn_dp_fit dp_fit;
 };
 
+/* Strength reduction (geoscni fos; docs/fos.md): the material with c and
+ * tan(phi) divided by factor, psi kept but never above the reduced phi, the
+ * cone fitted again as the case fitted it; damage left out (the factor
+ * reduces the peak strength). The material must be given in engineers'
+ * terms (dp_from_mohr_coulomb). */
+void gsn_material_reduce_strength(const struct gsn_material *m, double factor,
+                                  struct gsn_material *reduced);
+
 /* gmsh's volume mesher, whose nodes are the particles: Delaunay (one
  * thread) gives the same particles on every run; HXT is several times
  * faster but, in gmsh 4.8, not reproducible (about 0.1% of the particles

@@ -18,6 +18,8 @@ struct gsn_solve_options {
     int start_over; /* replace an interrupted run's results (else refused) */
     double progress_seconds; /* between progress lines into a file (0: the
                                 default, 10 s) */
+    int setup_warned;   /* the set-up's warnings were given by an earlier run
+                           of the same model: not again */
     int geostatic_only; /* the geostatic stage alone: results.h5 holds its
                            end state (displacements not reset) as the one
                            frame; exit 3 if it found no rest (geoscni fos) */
