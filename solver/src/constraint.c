@@ -578,6 +578,15 @@ static int prescribe(const struct gsn_model *m, const struct gsn_case *given,
     GSN_CHECK(c, GSN_ERR_MEMORY, "out of memory");
     *c = *given;
     int rc = gsn_case_resolve_symmetry(c, m);
+    /* plane_strain holds its component at zero at every particle already
+     * (explicit.c): rollers along it would only add rows to S (on a slab
+     * nearly every particle lies on its two faces; 2.7 times the cost of a
+     * factor-of-safety study, docs/solver.md "Plane strain") */
+    for (int b = 0; c->plane_strain_axis >= 0 && b < c->boundary_count; ++b) {
+        c->boundaries[b].fixed[c->plane_strain_axis] = 0;
+        c->boundaries[b].has_velocity[c->plane_strain_axis] = 0;
+        c->boundaries[b].velocity[c->plane_strain_axis] = 0.0;
+    }
     if (rc == GSN_OK)
         rc = collect_prescriptions(m, c, released, entry_of, velocity_of);
     for (int b = 0; rc == GSN_OK && b < c->boundary_count; ++b) {

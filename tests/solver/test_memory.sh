@@ -3,8 +3,8 @@
 # refuses a case that would not fit, with the numbers. The coarse Slope I
 # (4,886 particles) for 20 steps, with the slope cases' NSNI and with MSCNI,
 # and the thin slab of the deep-penetration footing (7,903 particles, two
-# spacings thick, nearly all of them on held faces, whose boundary matrices
-# take most of its memory):
+# spacings thick, whose peak comes while its rows are built, since its
+# plane-strain rollers are no longer constraints):
 # - the stated need lies within 15% of the peak resident size measured by
 #   /usr/bin/time (the estimate is a fit to 8 bodies, within 7% of them with
 #   SCNI, docs/solver.md "Memory"; the rest is the allocator's and the
