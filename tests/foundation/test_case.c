@@ -101,6 +101,30 @@ static void test_mohr_coulomb(void)
     round_trip(&from_file, &again);
     TEST_TRUE(memcmp(&from_file.material, &again.material,
                      sizeof again.material) == 0);
+
+    /* Strength reduction (geoscni fos): c and tan(phi) over F, psi kept
+     * below the reduced phi, the cone refitted; F = 1 gives the case's
+     * cone back exactly, damage dropped. */
+    struct gsn_material reduced, damaged = *m;
+    damaged.has_damage = 1;
+    gsn_material_reduce_strength(&damaged, 1.0, &reduced);
+    TEST_NEAR(reduced.dp_alpha, m->dp_alpha, 0.0);
+    TEST_NEAR(reduced.dp_R, m->dp_R, 0.0);
+    TEST_NEAR(reduced.dp_dilatancy, m->dp_dilatancy, 0.0);
+    TEST_INT(reduced.has_damage, 0);
+    gsn_material_reduce_strength(m, 2.0, &reduced);
+    double phi_2 = atan(tan(30.0 * degree) / 2.0) / degree; /* 16.10 deg */
+    TEST_REL(reduced.cohesion, 5e3, 1e-15);
+    TEST_REL(reduced.friction_angle, phi_2, 1e-15);
+    TEST_NEAR(reduced.dilation_angle, 5.0, 0.0); /* below phi_2: kept */
+    gsn_drucker_prager_fit(GSN_DP_FIT_PLANE_STRAIN, 5e3, phi_2, 5.0, &alpha, &R,
+                           &beta);
+    TEST_NEAR(reduced.dp_alpha, alpha, 0.0);
+    TEST_NEAR(reduced.dp_R, R, 0.0);
+    TEST_NEAR(reduced.dp_dilatancy, beta, 0.0);
+    gsn_material_reduce_strength(m, 8.0, &reduced); /* phi 4.13 < psi 5 */
+    TEST_NEAR(reduced.dilation_angle, reduced.friction_angle, 0.0);
+    TEST_REL(reduced.dp_dilatancy, reduced.dp_alpha, 1e-15); /* associated */
 }
 
 int main(void)
