@@ -365,9 +365,9 @@ int command_fos(const struct arguments *a)
     if (c->stabilization != GSN_STABILIZATION_NONE) {
         fprintf(stderr,
                 "fos: warning: %s integrates with a stabilization, which "
-                "stiffens collapse: Griffiths & Lane's slope still stood at "
-                "2.2 with NSNI 0.1 where plain SCNI fails from 1.41 on "
-                "(docs/fos.md); for a factor of safety use 'integration: "
+                "stiffens collapse: Griffiths & Lane's slope gave 1.61 with "
+                "NSNI 0.1, 1.41 with plain SCNI (1.38 published; "
+                "docs/fos.md); for a factor of safety use 'integration: "
                 "{method: scni}'\n",
                 c->path);
     }

@@ -6,7 +6,9 @@
 SetFactory("OpenCASCADE");
 DefineConstant[h = 0.5]; // mesh size, m: geoscni sets it to particles.spacing
 H = 10;           // height
-L = 2 * H;        // the slope's horizontal run (2:1)
+DefineConstant[L = 2 * H]; // the slope's horizontal run (2:1); a file that
+                           // sets L first and includes this one draws
+                           // another angle (tests/solver/cases/slope_60.geo)
 C = 12;           // crest behind the slope's top edge
 F0 = L + 1;       // the footing's edges
 F1 = L + 3;

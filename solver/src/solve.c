@@ -1460,17 +1460,16 @@ static long planned_frames(const struct run *r, double *frame_bytes)
     return frames;
 }
 
-/* A warning for gravity or tractions applied at full value at t = 0, with
- * a ramp to suggest: SUDDEN_LOAD_PERIODS periods of the body's lowest mode,
- * taken as a layer of height H on a fixed base, 4 H / c_s (H the body's
- * extent along gravity, or its largest extent for tractions alone). */
-static void warn_sudden_load(const struct run *r, int gravity, int traction)
+/* The body's extent along gravity (with_gravity and gravity given), or its
+ * largest extent along the axes, m. */
+static double body_height(const struct run *r, int with_gravity)
 {
     const struct gsn_case *c = r->c;
     const struct gsn_model *m = &r->model;
     double g =
         sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1] +
              c->gravity[2] * c->gravity[2]);
+    int gravity = with_gravity && g > 0.0;
     double height = 0.0;
     for (int axis = gravity ? -1 : 0; axis < (gravity ? 0 : 3); ++axis) {
         double low = INFINITY, high = -INFINITY;
@@ -1486,6 +1485,17 @@ static void warn_sudden_load(const struct run *r, int gravity, int traction)
         }
         height = fmax(height, high - low);
     }
+    return height;
+}
+
+/* A warning for gravity or tractions applied at full value at t = 0, with
+ * a ramp to suggest: SUDDEN_LOAD_PERIODS periods of the body's lowest mode,
+ * taken as a layer of height H on a fixed base, 4 H / c_s (H the body's
+ * extent along gravity, or its largest extent for tractions alone). */
+static void warn_sudden_load(const struct run *r, int gravity, int traction)
+{
+    const struct gsn_case *c = r->c;
+    double height = body_height(r, gravity);
     double period =
         4.0 * height / sqrt(c->material.shear_modulus / c->material.density);
     double ramp = SUDDEN_LOAD_PERIODS * period;
@@ -1850,6 +1860,10 @@ static double largest_displacement(const struct gsn_explicit *e, double *work)
  * (docs/solver.md, "The soil's own weight"). A body settling under strong
  * damping slows down; a mechanism keeps its unbalanced force and speeds up. */
 enum { MECHANISM_WINDOW_TRANSITS = 5, MECHANISM_WINDOWS = 3 };
+/* ... or that moved more than this share of its height along gravity:
+ * what held it then is not the soil's strength (the NSNI stabilization's
+ * elastic part held Griffiths & Lane's slope after 16 m; docs/fos.md) */
+#define MECHANISM_MOVE 0.1
 
 struct mechanism_watch {
     double residual, displacement, growth; /* at the last window's end */
@@ -1907,6 +1921,7 @@ static int geostatic_stage(struct run *r)
     e->damping_net = 1;
     long step = 0;
     int rc = GSN_OK, mechanism = 0;
+    double move_limit = MECHANISM_MOVE * body_height(r, 1);
     struct mechanism_watch watch = {INFINITY, 0.0, 0.0, 0};
     double *work = malloc(3 * sizeof(double) * ((size_t)e->particle_count + 1));
     /* the surfaces that will move are free while the body settles: the
@@ -1944,8 +1959,9 @@ static int geostatic_stage(struct run *r)
         }
         if (step > ramp && (step - ramp) % window == 0) {
             GSN_CALL_GOTO(unbalanced_force(r, work, &residual), rc, done);
-            mechanism = mechanism_found(&watch, residual,
-                                        largest_displacement(e, work));
+            double moved = largest_displacement(e, work);
+            mechanism =
+                mechanism_found(&watch, residual, moved) || moved > move_limit;
             if (mechanism)
                 break;
         }
@@ -1963,6 +1979,12 @@ static int geostatic_stage(struct run *r)
     r->geostatic_residual = residual;
     r->geostatic_seconds = now_seconds() - started;
     r->geostatic_displacement = largest_displacement(e, work);
+    GSN_CHECK_GOTO(
+        r->geostatic_displacement <= move_limit, rc, GSN_ERR_NUMERICAL, done,
+        "%s: the body moved %.3g m under its dead loads by step %ld, more "
+        "than a tenth of its height (%.3g m): a mechanism, whatever held it "
+        "after (a factor of safety below 1)",
+        c->path, r->geostatic_displacement, step, body_height(r, 1));
     r->geostatic_rested = residual <= c->geostatic_residual;
     GSN_CHECK_GOTO(
         !mechanism, rc, GSN_ERR_NUMERICAL, done,
