@@ -366,7 +366,7 @@ int command_fos(const struct arguments *a)
         fprintf(stderr,
                 "fos: warning: %s integrates with a stabilization, which "
                 "stiffens collapse: Griffiths & Lane's slope gave 1.61 with "
-                "NSNI 0.1, 1.41 with plain SCNI (1.38 published; "
+                "NSNI 0.1, 1.40 with plain SCNI (1.38 published; "
                 "docs/fos.md); for a factor of safety use 'integration: "
                 "{method: scni}'\n",
                 c->path);

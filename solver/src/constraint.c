@@ -568,9 +568,14 @@ double gsn_constraints_factor_seconds(const struct gsn_constraints *constraints)
 /* The prescriptions of case `given` on model m (symmetry entries resolved):
  * entry_of and velocity_of per particle and component (collect_
  * prescriptions), and per model surface the components its entry holds
- * and that entry's index (both arrays surface_count + 1, zeroed). */
+ * and that entry's index (both arrays surface_count + 1, zeroed). For the
+ * rows of the constraints (rows 1) the rollers along a plane_strain axis
+ * are left out: the key holds that component at every particle already
+ * (explicit.c), and on a slab nearly every particle lies on one of its two
+ * faces, so they made most of S and its factors (docs/solver.md, "Plane
+ * strain"); the held facets keep them (the same gradients as with them). */
 static int prescribe(const struct gsn_model *m, const struct gsn_case *given,
-                     const unsigned *released, int *entry_of,
+                     const unsigned *released, int rows, int *entry_of,
                      double *velocity_of, int *surface_mask, int *surface_entry)
 {
     /* symmetry planes hold their normal component: a copy with it fixed */
@@ -578,14 +583,14 @@ static int prescribe(const struct gsn_model *m, const struct gsn_case *given,
     GSN_CHECK(c, GSN_ERR_MEMORY, "out of memory");
     *c = *given;
     int rc = gsn_case_resolve_symmetry(c, m);
-    /* plane_strain holds its component at zero at every particle already
-     * (explicit.c): rollers along it would only add rows to S (on a slab
-     * nearly every particle lies on its two faces; 2.7 times the cost of a
-     * factor-of-safety study, docs/solver.md "Plane strain") */
-    for (int b = 0; c->plane_strain_axis >= 0 && b < c->boundary_count; ++b) {
-        c->boundaries[b].fixed[c->plane_strain_axis] = 0;
-        c->boundaries[b].has_velocity[c->plane_strain_axis] = 0;
-        c->boundaries[b].velocity[c->plane_strain_axis] = 0.0;
+    int axis = rows ? c->plane_strain_axis : -1;
+    unsigned axis_held = 0; /* bit b: entry b held the axis */
+    for (int b = 0; axis >= 0 && b < c->boundary_count; ++b) {
+        struct gsn_boundary *entry = &c->boundaries[b];
+        if (entry->fixed[axis] || entry->has_velocity[axis])
+            axis_held |= 1u << b;
+        entry->fixed[axis] = entry->has_velocity[axis] = 0;
+        entry->velocity[axis] = 0.0;
     }
     if (rc == GSN_OK)
         rc = collect_prescriptions(m, c, released, entry_of, velocity_of);
@@ -594,7 +599,8 @@ static int prescribe(const struct gsn_model *m, const struct gsn_case *given,
         surface_entry[surface] = b;
         for (int comp = 0; comp < 3; ++comp)
             if (c->boundaries[b].fixed[comp] ||
-                c->boundaries[b].has_velocity[comp])
+                c->boundaries[b].has_velocity[comp] ||
+                (comp == axis && axis_held >> b & 1u))
                 surface_mask[surface] |= 1 << comp;
     }
     free(c);
@@ -630,7 +636,7 @@ int gsn_constraints_create(const struct gsn_model *m, const struct gsn_case *c,
         GSN_CHECK_GOTO(k->released, rc, GSN_ERR_MEMORY, done, "out of memory");
         memcpy(k->released, released, sizeof(unsigned) * n);
     }
-    GSN_CALL_GOTO(prescribe(m, c, released, entry_of, velocity_of,
+    GSN_CALL_GOTO(prescribe(m, c, released, 1, entry_of, velocity_of,
                             k->surface_mask, k->surface_entry),
                   rc, done);
     for (int comp = 0; comp < 3; ++comp)
@@ -662,8 +668,8 @@ int gsn_constraints_held(const struct gsn_model *m, const struct gsn_case *c,
     GSN_CHECK_GOTO(*facet_mask && *particle_mask && entry_of && velocity_of &&
                        surface_mask && surface_entry,
                    rc, GSN_ERR_MEMORY, done, "out of memory");
-    GSN_CALL_GOTO(prescribe(m, c, released, entry_of, velocity_of, surface_mask,
-                            surface_entry),
+    GSN_CALL_GOTO(prescribe(m, c, released, 0, entry_of, velocity_of,
+                            surface_mask, surface_entry),
                   rc, done);
     for (size_t p = 0; p < n; ++p)
         for (int k = 0; k < 3; ++k)
@@ -757,7 +763,7 @@ int gsn_constraints_size_estimate(const struct gsn_model *m,
                 ++count;
             }
         entries[k] = factor_entries[k] = 0.0;
-        if (count > 0)
+        if (count > 0 && k != c->plane_strain_axis) /* no rows: prescribe */
             GSN_CALL_GOTO(pattern_size_estimate(count, held_position,
                                                 held_spacing, c->kernel_support,
                                                 &entries[k],
