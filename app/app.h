@@ -5,6 +5,8 @@
 
 #include "geoscni/case.h"
 
+#include <time.h>
+
 enum { MAX_CASES = 64 };
 
 struct arguments {
@@ -29,6 +31,10 @@ int app_lock_outdir(const char *outdir);
  * (may be NULL): 1 if the solve ran, 0 if it was skipped. */
 int app_run_case(const struct arguments *a, const struct gsn_case *c,
                  const char *outdir, int with_post, int *solved);
+
+/* The time of a clock (CLOCK_MONOTONIC: wall; CLOCK_PROCESS_CPUTIME_ID:
+ * CPU), s. */
+double app_seconds(clockid_t clock);
 
 /* pre of one case into outdir, skipped where its model.h5 is up to date */
 int app_pre(const struct arguments *a, const struct gsn_case *c,

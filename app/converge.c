@@ -38,7 +38,7 @@ struct level {
     char folder[GSN_PATH_SIZE];
 };
 
-static double seconds_of(clockid_t clock)
+double app_seconds(clockid_t clock)
 {
     struct timespec t;
     clock_gettime(clock, &t);
@@ -156,16 +156,16 @@ static int level_run(const struct arguments *a, const struct gsn_case *base,
     struct arguments level_arguments = *a;
     level_arguments.restart = level_interrupted(results, part);
     level_arguments.rerun = 0;
-    double wall = seconds_of(CLOCK_MONOTONIC);
-    double cpu = seconds_of(CLOCK_PROCESS_CPUTIME_ID);
+    double wall = app_seconds(CLOCK_MONOTONIC);
+    double cpu = app_seconds(CLOCK_PROCESS_CPUTIME_ID);
     GSN_CALL(app_lock_outdir(l->folder));
     int solved = 0;
     GSN_CALL(app_run_case(&level_arguments, &c, l->folder, 0, &solved));
     /* a level found done: its time is the earlier call's (NaN if unknown);
      * a continued one counts this call's part only */
-    l->wall = solved ? seconds_of(CLOCK_MONOTONIC) - wall : l->earlier_wall;
+    l->wall = solved ? app_seconds(CLOCK_MONOTONIC) - wall : l->earlier_wall;
     l->cpu =
-        solved ? seconds_of(CLOCK_PROCESS_CPUTIME_ID) - cpu : l->earlier_cpu;
+        solved ? app_seconds(CLOCK_PROCESS_CPUTIME_ID) - cpu : l->earlier_cpu;
     GSN_CALL(level_size(l));
     GSN_CALL(gsn_quantity_measure(l->folder, &c, q, &l->value));
     return GSN_OK;

@@ -48,13 +48,6 @@ struct search {
     double low, high; /* stands at low, fails at high; 0 / INFINITY: none */
 };
 
-static double wall_seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 /* The case fos can reduce: weight, strength in engineers' terms, no rigid
  * body (the geostatic stage holds none). */
 static int fos_check_case(const struct gsn_case *c)
@@ -192,12 +185,8 @@ static int trial_run(const struct arguments *a, const struct gsn_case *base,
     *c = *base;
     c->geostatic = 1;
     c->material = t->reduced;
-    char trials[GSN_PATH_SIZE], model[GSN_PATH_SIZE], link_path[GSN_PATH_SIZE];
-    int rc = gsn_path_join(trials, sizeof trials, outdir, "trials");
-    if (rc == GSN_OK)
-        rc = gsn_folder_prepare(trials);
-    if (rc == GSN_OK)
-        rc = gsn_folder_prepare(t->folder);
+    char model[GSN_PATH_SIZE], link_path[GSN_PATH_SIZE];
+    int rc = gsn_folder_prepare(t->folder); /* and trials/ */
     if (rc == GSN_OK)
         rc = gsn_path_join(model, sizeof model, outdir, "model.h5");
     if (rc == GSN_OK)
@@ -214,7 +203,7 @@ static int trial_run(const struct arguments *a, const struct gsn_case *base,
                                         .start_over = 1,
                                         .setup_warned = warned,
                                         .geostatic_only = 1};
-    double started = wall_seconds();
+    double started = app_seconds(CLOCK_MONOTONIC);
     if (rc == GSN_OK) {
         rc = gsn_solve_run(c, t->folder, &options);
         t->stands = rc == GSN_OK;
@@ -227,7 +216,7 @@ static int trial_run(const struct arguments *a, const struct gsn_case *base,
             rc = GSN_OK;
         }
     }
-    t->wall = wall_seconds() - started;
+    t->wall = app_seconds(CLOCK_MONOTONIC) - started;
     if (rc == GSN_OK && trial_read_results(t) != GSN_OK) {
         /* a failure before the stage's numbers were kept */
         gsn_error_clear();

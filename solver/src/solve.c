@@ -1895,15 +1895,7 @@ static int geostatic_stage(struct run *r)
     const struct gsn_case *c = r->c;
     struct gsn_explicit *e = r->reference->loop;
     double started = now_seconds(), last_print = started;
-    double extent = 0.0;
-    for (int k = 0; k < 3; ++k) {
-        double low = INFINITY, high = -INFINITY;
-        for (int i = 0; i < r->model.particle_count; ++i) {
-            low = fmin(low, r->model.position[3 * (size_t)i + (size_t)k]);
-            high = fmax(high, r->model.position[3 * (size_t)i + (size_t)k]);
-        }
-        extent = fmax(extent, high - low);
-    }
+    double extent = body_height(r, 0); /* the largest along the axes */
     const struct gsn_material *m = &c->material;
     double wave =
         sqrt((m->bulk_modulus + 4.0 / 3.0 * m->shear_modulus) / m->density);

@@ -55,16 +55,8 @@ awk -F, -v tol=0.01 'NR == 2 { for (k = 1; k <= NF; ++k) c[$k] = k }
 
 # The vertical cut, stopped in its third trial, then continued.
 "$geoscni" fos cases/vertical_cut.yaml -o "$out/cut" --no-pictures >"$out/cut0.log" 2>&1 &
-study=$!
-i=0
-rows() { if [ -f "$1" ]; then wc -l <"$1"; else echo 0; fi; }
-while [ "$(rows "$out/cut/fos.csv")" -lt 4 ] && [ $i -lt 1200 ]; do
-    sleep 0.05
-    i=$((i + 1))
-done
-kill -TERM $study
-wait $study
-status=$?
+stop_at_rows $! "$out/cut/fos.csv" 4
+status=$stopped_status
 # 130: stopped in a trial's steps; 143: killed between them (fos.csv is
 # written whole after each trial either way); 0: done before the signal
 echo "the stopped study ended with $status"

@@ -40,16 +40,8 @@ sed -e "s|^time: .*|time: {end: 10.0, step: auto}|" -e "s|^output: .*|output: {e
 "$geoscni" run "$out/long.yaml" -o "$out/straight" --no-pictures -q || fail "the long run failed"
 "$geoscni" pre "$out/long.yaml" -o "$out/stopped" -q || fail "pre failed"
 "$geoscni" solve "$out/long.yaml" -o "$out/stopped" -q 2>"$out/err" &
-solver=$!
-i=0
-rows() { if [ -f "$1" ]; then wc -l <"$1"; else echo 0; fi; }
-while [ "$(rows "$out/stopped/history.csv")" -lt 3 ] && [ $i -lt 600 ]; do
-    sleep 0.05
-    i=$((i + 1))
-done
-kill -TERM $solver
-wait $solver
-status=$?
+stop_at_rows $! "$out/stopped/history.csv" 3
+status=$stopped_status
 [ $status -eq 130 ] || echo "note: the solve ended before the signal ($status)"
 "$geoscni" solve "$out/long.yaml" -o "$out/stopped" --restart >"$out/restart.log" 2>&1 ||
     [ $status -eq 0 ] || fail "the restart failed: $(tail -3 "$out/restart.log")"
