@@ -33,13 +33,15 @@ enum { FOS_MAX_TRIALS = 64 };
 
 struct trial {
     double factor;
-    int stands;                  /* 1: at rest; 0: no rest */
-    long steps;                  /* of the geostatic stage */
-    double unbalanced;           /* over the weight, at the stage's end */
-    double displacement;         /* the largest, m */
-    double wall;                 /* s */
-    char folder[GSN_PATH_SIZE];  /* of its run */
-    struct gsn_material reduced; /* the trial's strength */
+    int stands;                 /* 1: at rest; 0: no rest */
+    long steps;                 /* of the geostatic stage */
+    double unbalanced;          /* over the weight, at the stage's end */
+    double displacement;        /* the largest, m */
+    double wall;                /* s */
+    char folder[GSN_PATH_SIZE]; /* of its run */
+    /* the trial's strengths, one per material; reduced[0] is the one the
+     * rows and lines show */
+    struct gsn_material reduced[GSN_MAX_MATERIALS];
 };
 
 struct search {
@@ -60,13 +62,16 @@ static int fos_check_case(const struct gsn_case *c)
               "(the factor of safety is that of the body under its own "
               "weight)",
               c->path);
-    GSN_CHECK(c->material.has_plasticity && c->material.dp_from_mohr_coulomb,
-              GSN_ERR_INPUT,
-              "%s: fos reduces c and tan(phi): give the strength as "
-              "'drucker_prager: {cohesion: PA, friction_angle: DEG, "
-              "dilation_angle: DEG}' (docs/material.md, \"In engineers' "
-              "terms\")",
-              c->path);
+    for (int k = 0; k < c->material_count; ++k) {
+        const struct gsn_material *m = &c->materials[k];
+        GSN_CHECK(m->has_plasticity && m->dp_from_mohr_coulomb, GSN_ERR_INPUT,
+                  "%s:%d: fos reduces c and tan(phi): give the strength%s%s "
+                  "as 'drucker_prager: {cohesion: PA, friction_angle: DEG, "
+                  "dilation_angle: DEG}' (docs/material.md, \"In engineers' "
+                  "terms\")",
+                  c->path, m->line.entry, m->volume[0] ? " of " : "",
+                  m->volume);
+    }
     for (int b = 0; b < c->boundary_count; ++b)
         GSN_CHECK(!c->boundaries[b].rigid, GSN_ERR_INPUT,
                   "%s:%d: fos brings the body to rest under its dead loads "
@@ -84,14 +89,23 @@ static int fos_signature(const struct gsn_case *c, const char *outdir,
     char model[GSN_PATH_SIZE], hash[GSN_FILE_HASH_SIZE];
     GSN_CALL(gsn_path_join(model, sizeof model, outdir, "model.h5"));
     GSN_CALL(gsn_file_hash(model, hash));
-    const struct gsn_material *m = &c->material;
-    snprintf(out, size,
-             "# geoscni fos of %s: model.h5 %s, c %.17g Pa, phi %.17g, psi "
-             "%.17g, fit %d, residual %.17g, damping %.17g, max_steps %ld, "
-             "k0 %.17g",
-             c->path, hash, m->cohesion, m->friction_angle, m->dilation_angle,
-             (int)m->dp_fit, c->geostatic_residual, c->geostatic_damping,
-             c->geostatic_max_steps, c->geostatic_k0);
+    int used =
+        snprintf(out, size, "# geoscni fos of %s: model.h5 %s", c->path, hash);
+    for (int k = 0; k < c->material_count && used > 0 && (size_t)used < size;
+         ++k) {
+        const struct gsn_material *m = &c->materials[k];
+        int w = snprintf(out + used, size - (size_t)used,
+                         ",%s%s c %.17g Pa, phi %.17g, psi %.17g, fit %d",
+                         m->volume[0] ? " " : "", m->volume, m->cohesion,
+                         m->friction_angle, m->dilation_angle, (int)m->dp_fit);
+        used += w > 0 ? w : 0;
+    }
+    if (used > 0 && (size_t)used < size)
+        snprintf(out + used, size - (size_t)used,
+                 ", residual %.17g, damping %.17g, max_steps %ld, k0 %.17g%s",
+                 c->geostatic_residual, c->geostatic_damping,
+                 c->geostatic_max_steps, c->geostatic_k0,
+                 c->water.present ? ", with water" : "");
     return GSN_OK;
 }
 
@@ -107,7 +121,7 @@ static void fos_read_earlier(const char *csv, const char *signature,
     FILE *file = fopen(csv, "r");
     if (!file)
         return;
-    char line[1024];
+    char line[2 * GSN_PATH_SIZE + 64];
     if (!fgets(line, sizeof line, file) ||
         strncmp(line, signature, strlen(signature)) != 0 ||
         (line[strlen(signature)] != '\n' && line[strlen(signature)] != '\0')) {
@@ -137,9 +151,9 @@ static int fos_csv_write(const char *path, const char *signature,
     for (int i = 0; i < s->count; ++i) {
         const struct trial *t = &s->trials[i];
         fprintf(file, "%.17g,%.17g,%.17g,%.17g,%d,%ld,%.17g,%.17g,%.3f\n",
-                t->factor, t->reduced.cohesion, t->reduced.friction_angle,
-                t->reduced.dilation_angle, t->stands, t->steps, t->unbalanced,
-                t->displacement, t->wall);
+                t->factor, t->reduced[0].cohesion, t->reduced[0].friction_angle,
+                t->reduced[0].dilation_angle, t->stands, t->steps,
+                t->unbalanced, t->displacement, t->wall);
     }
     if (fclose(file) != 0)
         return GSN_WRITE_ERROR(temporary, errno, "cannot write");
@@ -184,7 +198,8 @@ static int trial_run(const struct arguments *a, const struct gsn_case *base,
     GSN_CHECK(c, GSN_ERR_MEMORY, "out of memory");
     *c = *base;
     c->geostatic = 1;
-    c->material = t->reduced;
+    for (int k = 0; k < c->material_count; ++k)
+        c->materials[k] = t->reduced[k];
     char model[GSN_PATH_SIZE], link_path[GSN_PATH_SIZE];
     int rc = gsn_folder_prepare(t->folder); /* and trials/ */
     if (rc == GSN_OK)
@@ -272,9 +287,10 @@ static int fos_earlier_trial(const struct search *earlier, double factor,
 
 static void print_trial(const struct trial *t, int reused)
 {
-    printf("fos: factor %.4f (c %.4g kPa, phi %.2f, psi %.2f deg): %s",
-           t->factor, 1e-3 * t->reduced.cohesion, t->reduced.friction_angle,
-           t->reduced.dilation_angle, t->stands ? "stands" : "fails");
+    printf("fos: factor %.4f (%s%sc %.4g kPa, phi %.2f, psi %.2f deg): %s",
+           t->factor, t->reduced[0].volume, t->reduced[0].volume[0] ? ": " : "",
+           1e-3 * t->reduced[0].cohesion, t->reduced[0].friction_angle,
+           t->reduced[0].dilation_angle, t->stands ? "stands" : "fails");
     if (t->stands)
         printf(" (at rest after %ld steps, largest displacement %.3g m",
                t->steps, t->displacement);
@@ -338,16 +354,23 @@ int command_fos(const struct arguments *a)
     if (!a->rerun)
         fos_read_earlier(csv, signature, earlier);
     if (!a->quiet) {
-        printf("fos: %s: c %.4g kPa and tan(phi) %.4g divided by trial "
-               "factors until one the body stands at and one it does not "
-               "lie %.3g apart; the trials in %s/trials",
-               c->path, 1e-3 * c->material.cohesion,
-               tan(c->material.friction_angle * acos(-1.0) / 180.0), tolerance,
-               outdir);
+        if (c->material_count > 1)
+            printf("fos: %s: c and tan(phi) of its %d soils", c->path,
+                   c->material_count);
+        else
+            printf("fos: %s: c %.4g kPa and tan(phi) %.4g", c->path,
+                   1e-3 * c->material.cohesion,
+                   tan(c->material.friction_angle * acos(-1.0) / 180.0));
+        printf(" divided by trial factors until one the body stands at and "
+               "one it does not lie %.3g apart; the trials in %s/trials",
+               tolerance, outdir);
         if (earlier->count)
             printf(" (%d done before, kept in fos.csv)", earlier->count);
         printf("\n");
-        if (c->material.has_damage)
+        int damage = 0;
+        for (int k = 0; k < c->material_count; ++k)
+            damage |= c->materials[k].has_damage;
+        if (damage)
             printf("fos: note: the damage of the case is left out: the "
                    "factor reduces the peak strength c, phi\n");
     }
@@ -366,7 +389,9 @@ int command_fos(const struct arguments *a)
         GSN_CHECK_GOTO(s->count < FOS_MAX_TRIALS, rc, GSN_ERR_NUMERICAL, done,
                        "fos: no bracket after %d trials", s->count);
         struct trial t = {.factor = factor};
-        gsn_material_reduce_strength(&c->material, factor, &t.reduced);
+        for (int k = 0; k < c->material_count; ++k)
+            gsn_material_reduce_strength(&c->materials[k], factor,
+                                         &t.reduced[k]);
         char folder[64];
         snprintf(folder, sizeof folder, "trials/factor_%.4f", factor);
         GSN_CALL_GOTO(gsn_path_join(t.folder, sizeof t.folder, outdir, folder),

@@ -312,7 +312,7 @@ static int run(const struct problem *p, struct gsn_case *c,
     struct gsn_model model;
     memset(&model, 0, sizeof model);
     struct gsn_quadrature *q = NULL;
-    struct gsn_material_model *material = NULL;
+    struct gsn_material_set *materials = NULL;
     struct gsn_constraints *constraints = NULL;
     struct gsn_explicit *e = NULL;
     double *background = NULL, *u = NULL;
@@ -343,12 +343,9 @@ static int run(const struct problem *p, struct gsn_case *c,
                                              cells, NULL, &q, &constraints,
                                              NULL),
                   rc, done);
+    GSN_CALL_GOTO(gsn_material_set_create(c, &model, &materials), rc, done);
     GSN_CALL_GOTO(
-        gsn_material_model_create(gsn_material_name_for_case(&c->material),
-                                  &c->material, &material),
-        rc, done);
-    GSN_CALL_GOTO(
-        gsn_explicit_create(&model, q, material, constraints, c, 1.0, &e), rc,
+        gsn_explicit_create(&model, q, materials, constraints, c, 1.0, &e), rc,
         done);
     double stable = 0.0;
     GSN_CALL_GOTO(gsn_explicit_stable_step(e, &stable), rc, done);
@@ -382,7 +379,7 @@ done:
     free(background);
     gsn_explicit_destroy(&e);
     gsn_constraints_destroy(&constraints);
-    gsn_material_model_destroy(&material);
+    gsn_material_set_destroy(&materials);
     gsn_quadrature_destroy(&q);
     gsn_model_free(&model);
     return rc;

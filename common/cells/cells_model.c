@@ -137,6 +137,11 @@ int gsn_cells_model_at(const struct gsn_model *m, const double *position,
            sizeof(int) * (size_t)m->surface_count);
     memcpy(out->tetrahedra, body->tetrahedra, sizeof(int) * 4 * (size_t)nt);
     memcpy(out->tetrahedron_face, body->face, sizeof(int) * 4 * (size_t)nt);
+    /* the volumes' tetrahedra are m's own unless the body was made again */
+    GSN_CALL_GOTO(gsn_model_copy_volumes(m, out), rc, done);
+    if (nt != m->tetrahedron_count || body->tetrahedra != m->tetrahedra)
+        for (int t = 0; t < nt; ++t)
+            out->tetrahedron_volume[t] = -1;
     surface_areas(body, m->surface_count, x, out->surface_area);
     struct gsn_cells_report check;
     memset(&check, 0, sizeof check);

@@ -242,7 +242,7 @@ static int require_key(struct reader *r, const yaml_node_t *mapping,
                        const char *expected, yaml_node_t **value)
 {
     *value = mapping_find(r, mapping, key);
-    char path[128];
+    char path[256];
     key_path(path, sizeof path, context, key);
     GSN_CHECK(*value != NULL || context[0], GSN_ERR_INPUT,
               "%s:%d: missing required key '%s'; expected %s", r->path,
@@ -326,7 +326,7 @@ static int read_number(struct reader *r, const yaml_node_t *mapping,
     yaml_node_t *node = mapping_find(r, mapping, key);
     if (!node)
         return GSN_OK;
-    char path[128];
+    char path[256];
     key_path(path, sizeof path, context, key);
     GSN_CALL(parse_number(r, node, path, value));
     if (line)
@@ -340,7 +340,7 @@ static int read_required_number(struct reader *r, const yaml_node_t *mapping,
 {
     yaml_node_t *node = NULL;
     GSN_CALL(require_key(r, mapping, context, key, expected, &node));
-    char path[128];
+    char path[256];
     key_path(path, sizeof path, context, key);
     GSN_CALL(parse_number(r, node, path, value));
     *line = node_line(node);
@@ -364,7 +364,7 @@ static int read_positive(struct reader *r, const yaml_node_t *mapping,
                          const char *units, int required, double *value)
 {
     int line = node_line(mapping);
-    char path[128];
+    char path[256];
     key_path(path, sizeof path, context, key);
     if (required) {
         char expected[96];
@@ -552,15 +552,15 @@ static int read_integration(struct reader *r, const yaml_node_t *root,
 }
 
 /* drucker_prager: {cohesion, friction_angle, dilation_angle, fit}: the
- * cone fitted to Mohr-Coulomb (gsn_drucker_prager_fit). */
+ * cone fitted to Mohr-Coulomb (gsn_drucker_prager_fit). context names the
+ * block in messages ("material.drucker_prager"). */
 static int read_mohr_coulomb(struct reader *r, const yaml_node_t *dp,
-                             struct gsn_case *c)
+                             const char *context, struct gsn_material *m)
 {
     static const char *const keys[] = {"cohesion", "friction_angle",
                                        "dilation_angle", "fit", NULL};
     static const char *const fits[] = {"plane_strain", "compression", NULL};
-    static const char context[] = "material.drucker_prager";
-    struct gsn_material *m = &c->material;
+    char name[256];
     GSN_CALL(check_keys(r, dp, keys, context));
     int line_c = 0, line_phi = 0, line_psi = 0;
     GSN_CALL(read_required_number(r, dp, context, "cohesion",
@@ -574,113 +574,176 @@ static int read_mohr_coulomb(struct reader *r, const yaml_node_t *dp,
         "the dilation angle psi in degrees (0: no volume change in shear; "
         "equal to friction_angle: associated flow)",
         &m->dilation_angle, &line_psi));
-    GSN_CALL(check_lower(r, line_c, "material.drucker_prager.cohesion",
-                         m->cohesion, 0.0, 0, "Pa"));
+    key_path(name, sizeof name, context, "cohesion");
+    GSN_CALL(check_lower(r, line_c, name, m->cohesion, 0.0, 0, "Pa"));
     GSN_CHECK(m->friction_angle >= 0.0 && m->friction_angle <= 70.0,
               GSN_ERR_INPUT,
-              "%s:%d: 'material.drucker_prager.friction_angle' must be "
-              "between 0 and 70 degrees, got %g",
-              r->path, line_phi, m->friction_angle);
+              "%s:%d: '%s.friction_angle' must be between 0 and 70 degrees, "
+              "got %g",
+              r->path, line_phi, context, m->friction_angle);
     GSN_CHECK(m->dilation_angle >= 0.0 &&
                   m->dilation_angle <= m->friction_angle,
               GSN_ERR_INPUT,
-              "%s:%d: 'material.drucker_prager.dilation_angle' must be "
-              "between 0 and the friction angle (%g degrees), got %g",
-              r->path, line_psi, m->friction_angle, m->dilation_angle);
+              "%s:%d: '%s.dilation_angle' must be between 0 and the friction "
+              "angle (%g degrees), got %g",
+              r->path, line_psi, context, m->friction_angle, m->dilation_angle);
     GSN_CHECK(m->cohesion > 0.0 || m->friction_angle > 0.0, GSN_ERR_INPUT,
-              "%s:%d: 'material.drucker_prager': a soil with no cohesion and "
-              "no friction has no strength",
-              r->path, line_c);
+              "%s:%d: '%s': a soil with no cohesion and no friction has no "
+              "strength",
+              r->path, line_c, context);
     m->dp_fit = GSN_DP_FIT_PLANE_STRAIN;
     yaml_node_t *fit = mapping_find(r, dp, "fit");
     if (fit) {
         int index = 0;
-        GSN_CALL(
-            parse_word(r, fit, "material.drucker_prager.fit", fits, &index));
+        key_path(name, sizeof name, context, "fit");
+        GSN_CALL(parse_word(r, fit, name, fits, &index));
         m->dp_fit = (enum gsn_dp_fit)index;
     }
     gsn_drucker_prager_fit(m->dp_fit, m->cohesion, m->friction_angle,
                            m->dilation_angle, &m->dp_alpha, &m->dp_R,
                            &m->dp_dilatancy);
-    c->material_line.R = line_c;
+    m->line.R = line_c;
     m->dp_from_mohr_coulomb = 1;
     m->has_plasticity = 1;
     return GSN_OK;
 }
 
-static int read_material(struct reader *r, const yaml_node_t *root,
-                         struct gsn_case *c)
+/* drucker_prager: {alpha, R, dilatancy}: the cone of seed eq. (8). */
+static int read_cone(struct reader *r, const yaml_node_t *dp,
+                     const char *context, struct gsn_material *m)
 {
-    static const char *const keys[] = {"density",        "bulk_modulus",
-                                       "shear_modulus",  "damage",
-                                       "drucker_prager", NULL};
+    static const char *const keys[] = {"alpha", "R", "dilatancy", NULL};
+    char name[256];
+    GSN_CALL(check_keys(r, dp, keys, context));
+    int line_alpha = 0, line_R = 0;
+    GSN_CALL(read_required_number(r, dp, context, "alpha",
+                                  "the friction coefficient (>= 0), or "
+                                  "cohesion and friction_angle instead",
+                                  &m->dp_alpha, &line_alpha));
+    GSN_CALL(read_required_number(r, dp, context, "R",
+                                  "the cohesion-like strength in Pa (>= 0)",
+                                  &m->dp_R, &line_R));
+    key_path(name, sizeof name, context, "alpha");
+    GSN_CALL(check_lower(r, line_alpha, name, m->dp_alpha, 0.0, 0, ""));
+    key_path(name, sizeof name, context, "R");
+    GSN_CALL(check_lower(r, line_R, name, m->dp_R, 0.0, 0, "Pa"));
+    m->line.R = line_R;
+    m->dp_dilatancy = m->dp_alpha; /* associated flow by default */
+    int line_beta = line_alpha;
+    GSN_CALL(
+        read_number(r, dp, context, "dilatancy", &m->dp_dilatancy, &line_beta));
+    key_path(name, sizeof name, context, "dilatancy");
+    GSN_CALL(check_lower(r, line_beta, name, m->dp_dilatancy, 0.0, 0, ""));
+    m->has_plasticity = 1;
+    return GSN_OK;
+}
+
+/* One soil: the mapping node named context ("material", "materials.clay"). */
+static int read_one_material(struct reader *r, const yaml_node_t *node,
+                             const char *context, struct gsn_material *m)
+{
+    static const char *const keys[] = {"density",
+                                       "saturated_density",
+                                       "bulk_modulus",
+                                       "shear_modulus",
+                                       "damage",
+                                       "drucker_prager",
+                                       NULL};
     static const char *const damage_keys[] = {"e0", "ef", NULL};
-    static const char *const dp_keys[] = {"alpha", "R", "dilatancy", NULL};
-    struct gsn_material *m = &c->material;
-    yaml_node_t *node = NULL;
-    GSN_CALL(require_key(r, root, "", "material",
-                         "a mapping with density, bulk_modulus and "
-                         "shear_modulus",
-                         &node));
-    GSN_CALL(check_keys(r, node, keys, "material"));
-    GSN_CALL(read_positive(r, node, "material", "density", "kg/m^3", 1,
-                           &m->density));
-    GSN_CALL(read_positive(r, node, "material", "bulk_modulus", "Pa", 1,
+    char name[256], sub[160];
+    GSN_CALL(check_keys(r, node, keys, context));
+    m->line.entry = node_line(node);
+    GSN_CALL(
+        read_positive(r, node, context, "density", "kg/m^3", 1, &m->density));
+    m->saturated_density = m->density;
+    GSN_CALL(read_positive(r, node, context, "saturated_density", "kg/m^3", 0,
+                           &m->saturated_density));
+    GSN_CALL(read_positive(r, node, context, "bulk_modulus", "Pa", 1,
                            &m->bulk_modulus));
-    GSN_CALL(read_positive(r, node, "material", "shear_modulus", "Pa", 1,
+    GSN_CALL(read_positive(r, node, context, "shear_modulus", "Pa", 1,
                            &m->shear_modulus));
-    c->material_line.density = node_line(mapping_find(r, node, "density"));
-    c->material_line.bulk_modulus =
-        node_line(mapping_find(r, node, "bulk_modulus"));
-    c->material_line.shear_modulus =
-        node_line(mapping_find(r, node, "shear_modulus"));
+    m->line.density = node_line(mapping_find(r, node, "density"));
+    m->line.bulk_modulus = node_line(mapping_find(r, node, "bulk_modulus"));
+    m->line.shear_modulus = node_line(mapping_find(r, node, "shear_modulus"));
 
     yaml_node_t *damage = mapping_find(r, node, "damage");
     if (damage) {
-        GSN_CALL(check_keys(r, damage, damage_keys, "material.damage"));
+        key_path(sub, sizeof sub, context, "damage");
+        GSN_CALL(check_keys(r, damage, damage_keys, sub));
         int line_e0 = 0, line_ef = 0;
-        GSN_CALL(read_required_number(r, damage, "material.damage", "e0",
+        GSN_CALL(read_required_number(r, damage, sub, "e0",
                                       "the initial damage threshold (> 0)",
                                       &m->damage_e0, &line_e0));
-        GSN_CALL(read_required_number(r, damage, "material.damage", "ef",
+        GSN_CALL(read_required_number(r, damage, sub, "ef",
                                       "the final damage threshold (> e0)",
                                       &m->damage_ef, &line_ef));
-        GSN_CALL(check_lower(r, line_e0, "material.damage.e0", m->damage_e0,
-                             0.0, 1, ""));
+        key_path(name, sizeof name, sub, "e0");
+        GSN_CALL(check_lower(r, line_e0, name, m->damage_e0, 0.0, 1, ""));
         GSN_CHECK(m->damage_e0 < m->damage_ef, GSN_ERR_INPUT,
-                  "%s:%d: 'material.damage.e0' (%g) must be less than "
-                  "'material.damage.ef' (%g): damage grows from e0 to ef",
-                  r->path, line_e0, m->damage_e0, m->damage_ef);
+                  "%s:%d: '%s.e0' (%g) must be less than '%s.ef' (%g): "
+                  "damage grows from e0 to ef",
+                  r->path, line_e0, sub, m->damage_e0, sub, m->damage_ef);
         m->has_damage = 1;
     }
 
     yaml_node_t *dp = mapping_find(r, node, "drucker_prager");
+    key_path(sub, sizeof sub, context, "drucker_prager");
     if (dp && (mapping_find(r, dp, "cohesion") ||
                mapping_find(r, dp, "friction_angle")))
-        GSN_CALL(read_mohr_coulomb(r, dp, c));
-    else if (dp) {
-        GSN_CALL(check_keys(r, dp, dp_keys, "material.drucker_prager"));
-        int line_alpha = 0, line_R = 0;
-        GSN_CALL(read_required_number(r, dp, "material.drucker_prager", "alpha",
-                                      "the friction coefficient (>= 0), or "
-                                      "cohesion and friction_angle instead",
-                                      &m->dp_alpha, &line_alpha));
-        GSN_CALL(read_required_number(r, dp, "material.drucker_prager", "R",
-                                      "the cohesion-like strength in Pa (>= 0)",
-                                      &m->dp_R, &line_R));
-        GSN_CALL(check_lower(r, line_alpha, "material.drucker_prager.alpha",
-                             m->dp_alpha, 0.0, 0, ""));
-        GSN_CALL(check_lower(r, line_R, "material.drucker_prager.R", m->dp_R,
-                             0.0, 0, "Pa"));
-        c->material_line.R = line_R;
-        m->dp_dilatancy = m->dp_alpha; /* associated flow by default */
-        int line_beta = line_alpha;
-        GSN_CALL(read_number(r, dp, "material.drucker_prager", "dilatancy",
-                             &m->dp_dilatancy, &line_beta));
-        GSN_CALL(check_lower(r, line_beta, "material.drucker_prager.dilatancy",
-                             m->dp_dilatancy, 0.0, 0, ""));
-        m->has_plasticity = 1;
+        GSN_CALL(read_mohr_coulomb(r, dp, sub, m));
+    else if (dp)
+        GSN_CALL(read_cone(r, dp, sub, m));
+    return GSN_OK;
+}
+
+/* material: (one soil) or materials: (a soil per gmsh physical volume,
+ * keyed by its name; pre checks the names against the geometry). */
+static int read_material(struct reader *r, const yaml_node_t *root,
+                         struct gsn_case *c)
+{
+    yaml_node_t *one = mapping_find(r, root, "material");
+    yaml_node_t *many = mapping_find(r, root, "materials");
+    GSN_CHECK(!(one && many), GSN_ERR_INPUT,
+              "%s:%d: give either 'material' (one soil for the whole body) or "
+              "'materials' (a soil for each gmsh physical volume), not both",
+              r->path, node_line(many));
+    if (!many) {
+        yaml_node_t *node = NULL;
+        GSN_CALL(require_key(r, root, "", "material",
+                             "a mapping with density, bulk_modulus and "
+                             "shear_modulus (or 'materials', a soil per gmsh "
+                             "physical volume)",
+                             &node));
+        c->material_count = 1;
+        return read_one_material(r, node, "material", &c->materials[0]);
     }
+    GSN_CALL(check_keys(r, many, NULL, "materials"));
+    int count =
+        (int)(many->data.mapping.pairs.top - many->data.mapping.pairs.start);
+    GSN_CHECK(count >= 1, GSN_ERR_INPUT,
+              "%s:%d: 'materials' is empty; give each gmsh physical volume "
+              "a soil: 'materials: {VOLUME: {density: ..., bulk_modulus: "
+              "..., shear_modulus: ...}}'",
+              r->path, node_line(many));
+    GSN_CHECK(count <= GSN_MAX_MATERIALS, GSN_ERR_INPUT,
+              "%s:%d: 'materials' has %d entries, at most %d", r->path,
+              node_line(many), count, GSN_MAX_MATERIALS);
+    int k = 0;
+    for (yaml_node_pair_t *p = many->data.mapping.pairs.start;
+         p < many->data.mapping.pairs.top; ++p, ++k) {
+        const char *volume = scalar_text(node_get(r, p->key));
+        GSN_CHECK(strlen(volume) < GSN_NAME_SIZE, GSN_ERR_INPUT,
+                  "%s:%d: volume name '%s' is longer than %d characters",
+                  r->path, node_line(node_get(r, p->key)), volume,
+                  GSN_NAME_SIZE - 1);
+        char context[GSN_NAME_SIZE + 16];
+        snprintf(context, sizeof context, "materials.%s", volume);
+        struct gsn_material *m = &c->materials[k];
+        GSN_CALL(read_one_material(r, node_get(r, p->value), context, m));
+        snprintf(m->volume, sizeof m->volume, "%s", volume);
+    }
+    c->material_count = count;
+    c->materials_by_volume = 1;
     return GSN_OK;
 }
 
@@ -1071,6 +1134,168 @@ static int read_gravity(struct reader *r, const yaml_node_t *root,
     return GSN_OK;
 }
 
+/* The unit vector against gravity, or 0 without gravity. */
+static int up_direction(const struct gsn_case *c, double up[3])
+{
+    double g =
+        sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1] +
+             c->gravity[2] * c->gravity[2]);
+    for (int k = 0; k < 3; ++k)
+        up[k] = g > 0.0 ? -c->gravity[k] / g : 0.0;
+    return g > 0.0;
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* The horizontal unit direction of a water table's section line (from its
+ * first point to its last, gravity's component taken off). */
+static void section_direction(const struct gsn_case *c, double d[3])
+{
+    double up[3];
+    up_direction(c, up);
+    const struct gsn_water *w = &c->water;
+    double span[3], length = 0.0;
+    for (int k = 0; k < 3; ++k)
+        span[k] = w->points[w->point_count - 1][k] - w->points[0][k];
+    double rise = dot3(span, up);
+    for (int k = 0; k < 3; ++k) {
+        d[k] = span[k] - rise * up[k];
+        length += d[k] * d[k];
+    }
+    length = sqrt(length);
+    for (int k = 0; k < 3; ++k)
+        d[k] = length > 0.0 ? d[k] / length : 0.0;
+}
+
+double gsn_height(const struct gsn_case *c, const double x[3])
+{
+    double up[3];
+    up_direction(c, up);
+    return dot3(up, x);
+}
+
+double gsn_water_table_height(const struct gsn_case *c, const double x[3])
+{
+    const struct gsn_water *w = &c->water;
+    if (w->point_count == 1)
+        return w->points[0][0];
+    double d[3];
+    section_direction(c, d);
+    double s = dot3(d, x);
+    int last = w->point_count - 1;
+    if (s <= dot3(d, w->points[0]))
+        return gsn_height(c, w->points[0]);
+    if (s >= dot3(d, w->points[last]))
+        return gsn_height(c, w->points[last]);
+    int i = 0;
+    while (i + 1 < last && dot3(d, w->points[i + 1]) < s)
+        ++i;
+    double s0 = dot3(d, w->points[i]), s1 = dot3(d, w->points[i + 1]);
+    double h0 = gsn_height(c, w->points[i]),
+           h1 = gsn_height(c, w->points[i + 1]);
+    return h0 + (h1 - h0) * (s - s0) / (s1 - s0);
+}
+
+double gsn_water_pressure(const struct gsn_case *c, const double x[3])
+{
+    if (!c->water.present)
+        return 0.0;
+    double head = gsn_water_table_height(c, x) - gsn_height(c, x);
+    return head > 0.0 ? c->water.unit_weight * head : 0.0;
+}
+
+/* water: {level: H | table: [[x, y, z], ...], unit_weight: gamma_w}. */
+static int read_water(struct reader *r, const yaml_node_t *root,
+                      struct gsn_case *c)
+{
+    static const char *const keys[] = {"level", "table", "unit_weight", NULL};
+    yaml_node_t *node = mapping_find(r, root, "water");
+    if (!node)
+        return GSN_OK;
+    struct gsn_water *w = &c->water;
+    w->line = node_line(node);
+    GSN_CALL(check_keys(r, node, keys, "water"));
+    double up[3];
+    GSN_CHECK(up_direction(c, up), GSN_ERR_INPUT,
+              "%s:%d: 'water' gives a water table, whose pore pressure is "
+              "the water's weight: give gravity too",
+              r->path, w->line);
+    yaml_node_t *level = mapping_find(r, node, "level");
+    yaml_node_t *table = mapping_find(r, node, "table");
+    GSN_CHECK(!level != !table, GSN_ERR_INPUT,
+              "%s:%d: 'water' needs one of 'level' (the table's height in m, "
+              "along -gravity) or 'table' (a section's line: a list of [x, y, "
+              "z] points), %s",
+              r->path, w->line, level ? "not both" : "got neither");
+    if (level) {
+        GSN_CALL(parse_number(r, level, "water.level", &w->points[0][0]));
+        w->point_count = 1;
+    } else {
+        int count = sequence_length(table);
+        GSN_CHECK(count >= 2 && count <= GSN_MAX_WATER_POINTS, GSN_ERR_INPUT,
+                  "%s:%d: 'water.table' must be a list of 2 to %d points "
+                  "[x, y, z] along a section (or give 'level'), got %s",
+                  r->path, node_line(table), GSN_MAX_WATER_POINTS,
+                  node_kind(r, table));
+        for (int i = 0; i < count; ++i) {
+            char name[64];
+            int present[3];
+            snprintf(name, sizeof name, "water.table[%d]", i);
+            GSN_CALL(read_vector3(
+                r, node_get(r, table->data.sequence.items.start[i]), name, 0,
+                present, w->points[i]));
+        }
+        w->point_count = count;
+        double d[3];
+        section_direction(c, d);
+        GSN_CHECK(dot3(d, d) > 0.0, GSN_ERR_INPUT,
+                  "%s:%d: the points of 'water.table' lie above one another; "
+                  "give them along a horizontal line of the section",
+                  r->path, node_line(table));
+        for (int i = 1; i < count; ++i)
+            GSN_CHECK(dot3(d, w->points[i]) > dot3(d, w->points[i - 1]),
+                      GSN_ERR_INPUT,
+                      "%s:%d: 'water.table[%d]' does not go on from the "
+                      "point before it along the section; give the points "
+                      "in order, one way along it",
+                      r->path, node_line(table), i);
+    }
+    /* fresh water, 1000 kg/m^3, under the case's gravity */
+    w->unit_weight = 1000.0 * sqrt(dot3(c->gravity, c->gravity));
+    int line = w->line;
+    GSN_CALL(
+        read_number(r, node, "water", "unit_weight", &w->unit_weight, &line));
+    GSN_CALL(check_lower(r, line, "water.unit_weight", w->unit_weight, 0.0, 1,
+                         "N/m^3"));
+    w->present = 1;
+    return GSN_OK;
+}
+
+double gsn_case_slowest_wave(const struct gsn_case *c, int shear)
+{
+    double slowest = INFINITY;
+    for (int k = 0; k < c->material_count; ++k) {
+        const struct gsn_material *m = &c->materials[k];
+        double modulus = shear ? m->shear_modulus
+                               : m->bulk_modulus + 4.0 / 3.0 * m->shear_modulus;
+        slowest = fmin(slowest, sqrt(modulus / m->saturated_density));
+    }
+    return slowest;
+}
+
+int gsn_case_find_material(const struct gsn_case *c, const char *volume)
+{
+    if (!c->materials_by_volume)
+        return 0;
+    for (int k = 0; k < c->material_count; ++k)
+        if (strcmp(c->materials[k].volume, volume) == 0)
+            return k;
+    return -1;
+}
+
 static void case_set_defaults(struct gsn_case *c)
 {
     memset(c, 0, sizeof *c);
@@ -1093,11 +1318,23 @@ static void case_set_defaults(struct gsn_case *c)
 
 static int read_document(struct reader *r, struct gsn_case *c)
 {
-    static const char *const keys[] = {
-        "geometry",     "particles",  "kernel",   "integration",
-        "material",     "gravity",    "boundary", "time",
-        "damping",      "kinematics", "output",   "reference_update",
-        "plane_strain", "geostatic",  NULL};
+    static const char *const keys[] = {"geometry",
+                                       "particles",
+                                       "kernel",
+                                       "integration",
+                                       "material",
+                                       "materials",
+                                       "gravity",
+                                       "boundary",
+                                       "time",
+                                       "damping",
+                                       "kinematics",
+                                       "output",
+                                       "reference_update",
+                                       "plane_strain",
+                                       "geostatic",
+                                       "water",
+                                       NULL};
     yaml_node_t *root = yaml_document_get_root_node(&r->document);
     GSN_CHECK(root != NULL, GSN_ERR_INPUT,
               "%s:1: the case file is empty; expected a mapping with "
@@ -1110,6 +1347,7 @@ static int read_document(struct reader *r, struct gsn_case *c)
     GSN_CALL(read_integration(r, root, c));
     GSN_CALL(read_material(r, root, c));
     GSN_CALL(read_gravity(r, root, c));
+    GSN_CALL(read_water(r, root, c));
     GSN_CALL(read_boundary(r, root, c));
     GSN_CALL(read_time(r, root, c));
     GSN_CALL(read_damping(r, root, c));
@@ -1256,10 +1494,37 @@ static void write_components(FILE *out, const int present[3],
     }
 }
 
+/* One soil's keys, each line indented by indent. */
+static void write_material(const struct gsn_material *m, const char *indent,
+                           FILE *out)
+{
+    fprintf(out,
+            "%sdensity: %.17g\n%ssaturated_density: %.17g\n"
+            "%sbulk_modulus: %.17g\n%sshear_modulus: %.17g\n",
+            indent, m->density, indent, m->saturated_density, indent,
+            m->bulk_modulus, indent, m->shear_modulus);
+    if (m->has_damage)
+        fprintf(out, "%sdamage: {e0: %.17g, ef: %.17g}\n", indent, m->damage_e0,
+                m->damage_ef);
+    if (m->has_plasticity && m->dp_from_mohr_coulomb)
+        fprintf(out,
+                "%sdrucker_prager: {cohesion: %.17g, friction_angle: %.17g, "
+                "dilation_angle: %.17g, fit: %s}   # alpha %.17g, R %.17g, "
+                "dilatancy %.17g\n",
+                indent, m->cohesion, m->friction_angle, m->dilation_angle,
+                m->dp_fit == GSN_DP_FIT_COMPRESSION ? "compression"
+                                                    : "plane_strain",
+                m->dp_alpha, m->dp_R, m->dp_dilatancy);
+    else if (m->has_plasticity)
+        fprintf(out,
+                "%sdrucker_prager: {alpha: %.17g, R: %.17g, dilatancy: "
+                "%.17g}\n",
+                indent, m->dp_alpha, m->dp_R, m->dp_dilatancy);
+}
+
 int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
 {
     static const char *const basis_names[] = {"", "linear", "quadratic"};
-    const struct gsn_material *m = &c->material;
     fprintf(out, "# resolved parameters of %s\n", c->path);
     fprintf(out, "geometry: '%s'\n", c->geometry);
     fprintf(out, "particles: {spacing: %.17g, facet_points: %d, mesher: %s",
@@ -1276,29 +1541,31 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
     if (c->stabilization != GSN_STABILIZATION_NONE)
         fprintf(out, ", coefficient: %.17g", c->stabilization_coefficient);
     fputs("}\n", out);
-    fprintf(out,
-            "material:\n  density: %.17g\n  bulk_modulus: %.17g\n"
-            "  shear_modulus: %.17g\n",
-            m->density, m->bulk_modulus, m->shear_modulus);
-    if (m->has_damage)
-        fprintf(out, "  damage: {e0: %.17g, ef: %.17g}\n", m->damage_e0,
-                m->damage_ef);
-    if (m->has_plasticity && m->dp_from_mohr_coulomb)
-        fprintf(out,
-                "  drucker_prager: {cohesion: %.17g, friction_angle: %.17g, "
-                "dilation_angle: %.17g, fit: %s}   # alpha %.17g, R %.17g, "
-                "dilatancy %.17g\n",
-                m->cohesion, m->friction_angle, m->dilation_angle,
-                m->dp_fit == GSN_DP_FIT_COMPRESSION ? "compression"
-                                                    : "plane_strain",
-                m->dp_alpha, m->dp_R, m->dp_dilatancy);
-    else if (m->has_plasticity)
-        fprintf(out,
-                "  drucker_prager: {alpha: %.17g, R: %.17g, dilatancy: "
-                "%.17g}\n",
-                m->dp_alpha, m->dp_R, m->dp_dilatancy);
+    if (c->materials_by_volume) {
+        fputs("materials:\n", out);
+        for (int k = 0; k < c->material_count; ++k) {
+            fprintf(out, "  '%s':\n", c->materials[k].volume);
+            write_material(&c->materials[k], "    ", out);
+        }
+    } else {
+        fputs("material:\n", out);
+        write_material(&c->material, "  ", out);
+    }
     fprintf(out, "gravity: [%.17g, %.17g, %.17g]\n", c->gravity[0],
             c->gravity[1], c->gravity[2]);
+    if (c->water.present) {
+        const struct gsn_water *w = &c->water;
+        if (w->point_count == 1)
+            fprintf(out, "water: {level: %.17g", w->points[0][0]);
+        else {
+            fputs("water: {table: [", out);
+            for (int i = 0; i < w->point_count; ++i)
+                fprintf(out, "%s[%.17g, %.17g, %.17g]", i ? ", " : "",
+                        w->points[i][0], w->points[i][1], w->points[i][2]);
+            fputs("]", out);
+        }
+        fprintf(out, ", unit_weight: %.17g}\n", w->unit_weight);
+    }
     fprintf(out, "boundary:%s\n", c->boundary_count ? "" : " {}");
     for (int i = 0; i < c->boundary_count; ++i) {
         const struct gsn_boundary *b = &c->boundaries[i];

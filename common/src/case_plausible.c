@@ -28,16 +28,37 @@ static void warn(FILE *out, const struct gsn_case *c, int line,
     ++*count;
 }
 
-static void check_density(FILE *out, const struct gsn_case *c, int *count)
+/* The name of a material's block in messages: "material" or
+ * "materials.VOLUME". */
+static const char *block_name(const struct gsn_material *m, char *out,
+                              size_t size)
 {
-    const double rho = c->material.density;
+    if (m->volume[0])
+        snprintf(out, size, "materials.%s", m->volume);
+    else
+        snprintf(out, size, "material");
+    return out;
+}
+
+static void check_density(FILE *out, const struct gsn_case *c,
+                          const struct gsn_material *m, const char *block,
+                          int *count)
+{
+    const double rho = m->density;
     char text[512];
+    if (m->saturated_density < rho) {
+        snprintf(text, sizeof text,
+                 "%s.saturated_density (%g kg/m^3) is less than its density "
+                 "(%g kg/m^3): a saturated soil is the heavier one",
+                 block, m->saturated_density, rho);
+        warn(out, c, m->line.entry, text, count);
+    }
     if (rho >= DENSITY_LOW && rho <= DENSITY_HIGH)
         return;
     int n = snprintf(text, sizeof text,
-                     "material.density = %g kg/m^3 is implausible for soil "
+                     "%s.density = %g kg/m^3 is implausible for soil "
                      "(%g to %g kg/m^3)",
-                     rho, DENSITY_LOW, DENSITY_HIGH);
+                     block, rho, DENSITY_LOW, DENSITY_HIGH);
     if (rho < 10.0)
         snprintf(text + n, sizeof text - (size_t)n,
                  ": probably given in t/m^3 or g/cm^3; in kg/m^3 write %g",
@@ -50,19 +71,20 @@ static void check_density(FILE *out, const struct gsn_case *c, int *count)
     else
         snprintf(text + n, sizeof text - (size_t)n,
                  ": check its unit (kg/m^3)");
-    warn(out, c, c->material_line.density, text, count);
+    warn(out, c, m->line.density, text, count);
 }
 
-static void check_modulus(FILE *out, const struct gsn_case *c, const char *key,
-                          double value, int line, int *count)
+static void check_modulus(FILE *out, const struct gsn_case *c,
+                          const char *block, const char *key, double value,
+                          int line, int *count)
 {
     char text[512];
     if (value >= MODULUS_LOW && value <= MODULUS_HIGH)
         return;
     int n = snprintf(text, sizeof text,
-                     "material.%s = %g Pa is implausible for soil (%g to %g "
+                     "%s.%s = %g Pa is implausible for soil (%g to %g "
                      "Pa)",
-                     key, value, MODULUS_LOW, MODULUS_HIGH);
+                     block, key, value, MODULUS_LOW, MODULUS_HIGH);
     if (value < 1e3)
         snprintf(text + n, sizeof text - (size_t)n,
                  ": probably given in MPa; in Pa write %g", value * 1e6);
@@ -74,42 +96,51 @@ static void check_modulus(FILE *out, const struct gsn_case *c, const char *key,
     warn(out, c, line, text, count);
 }
 
-int gsn_case_warn_implausible(const struct gsn_case *c, FILE *out)
+static int warn_material(const struct gsn_case *c, const struct gsn_material *m,
+                         FILE *out)
 {
-    const struct gsn_material *m = &c->material;
     int count = 0;
-    char text[512];
-    check_density(out, c, &count);
-    check_modulus(out, c, "bulk_modulus", m->bulk_modulus,
-                  c->material_line.bulk_modulus, &count);
-    check_modulus(out, c, "shear_modulus", m->shear_modulus,
-                  c->material_line.shear_modulus, &count);
+    char text[512], block[GSN_NAME_SIZE + 16];
+    block_name(m, block, sizeof block);
+    check_density(out, c, m, block, &count);
+    check_modulus(out, c, block, "bulk_modulus", m->bulk_modulus,
+                  m->line.bulk_modulus, &count);
+    check_modulus(out, c, block, "shear_modulus", m->shear_modulus,
+                  m->line.shear_modulus, &count);
     /* Poisson's ratio (3K - 2mu) / (2 (3K + mu)) < 0: mu > 1.5 K */
     if (m->shear_modulus > 1.5 * m->bulk_modulus) {
         snprintf(text, sizeof text,
-                 "material.shear_modulus (%g Pa) is over 1.5 times "
+                 "%s.shear_modulus (%g Pa) is over 1.5 times "
                  "bulk_modulus (%g Pa), a negative Poisson's ratio (%.3g), "
                  "which no soil has: are the two swapped?",
-                 m->shear_modulus, m->bulk_modulus,
+                 block, m->shear_modulus, m->bulk_modulus,
                  (3.0 * m->bulk_modulus - 2.0 * m->shear_modulus) /
                      (2.0 * (3.0 * m->bulk_modulus + m->shear_modulus)));
-        warn(out, c, c->material_line.shear_modulus, text, &count);
+        warn(out, c, m->line.shear_modulus, text, &count);
     } else if (m->bulk_modulus > MODULUS_RATIO_HIGH * m->shear_modulus) {
         snprintf(text, sizeof text,
-                 "material.bulk_modulus (%g Pa) is over %g times "
+                 "%s.bulk_modulus (%g Pa) is over %g times "
                  "shear_modulus (%g Pa): are both in Pa?",
-                 m->bulk_modulus, MODULUS_RATIO_HIGH, m->shear_modulus);
-        warn(out, c, c->material_line.bulk_modulus, text, &count);
+                 block, m->bulk_modulus, MODULUS_RATIO_HIGH, m->shear_modulus);
+        warn(out, c, m->line.bulk_modulus, text, &count);
     }
     /* the strength as given: the cohesion, or R of the cone */
     const char *strength_key = m->dp_from_mohr_coulomb ? "cohesion" : "R";
     double strength = m->dp_from_mohr_coulomb ? m->cohesion : m->dp_R;
     if (m->has_plasticity && strength > 0.0 && strength < STRENGTH_LOW) {
         snprintf(text, sizeof text,
-                 "material.drucker_prager.%s = %g Pa is a very weak soil "
+                 "%s.drucker_prager.%s = %g Pa is a very weak soil "
                  "(below %g Pa): if it is given in kPa, write %g",
-                 strength_key, strength, STRENGTH_LOW, strength * 1e3);
-        warn(out, c, c->material_line.R, text, &count);
+                 block, strength_key, strength, STRENGTH_LOW, strength * 1e3);
+        warn(out, c, m->line.R, text, &count);
     }
+    return count;
+}
+
+int gsn_case_warn_implausible(const struct gsn_case *c, FILE *out)
+{
+    int count = 0;
+    for (int k = 0; k < c->material_count; ++k)
+        count += warn_material(c, &c->materials[k], out);
     return count;
 }

@@ -43,7 +43,8 @@ int gsn_model_allocate(struct gsn_model *m, int particle_count,
         (void **)&m->facet_point_offset, (void **)&m->facet_point,
         (void **)&m->facet_weight,       (void **)&m->surface_name,
         (void **)&m->surface_tag,        (void **)&m->surface_area,
-        (void **)&m->tetrahedra,         (void **)&m->tetrahedron_face};
+        (void **)&m->tetrahedra,         (void **)&m->tetrahedron_face,
+        (void **)&m->particle_volume,    (void **)&m->tetrahedron_volume};
     const size_t counts[] = {3 * n,
                              n,
                              3 * n,
@@ -61,23 +62,63 @@ int gsn_model_allocate(struct gsn_model *m, int particle_count,
                              (size_t)surface_count,
                              (size_t)surface_count,
                              4 * (size_t)tetrahedron_count,
-                             4 * (size_t)tetrahedron_count};
-    const size_t sizes[] = {sizeof(double), sizeof(double),     sizeof(double),
-                            sizeof(int),    sizeof(int),        sizeof(int),
-                            sizeof(int),    sizeof(int),        sizeof(double),
-                            sizeof(double), sizeof(int),        sizeof(double),
-                            sizeof(double), GSN_H5_STRING_SIZE, sizeof(int),
-                            sizeof(double), sizeof(int),        sizeof(int)};
+                             4 * (size_t)tetrahedron_count,
+                             n,
+                             (size_t)tetrahedron_count};
+    const size_t sizes[] = {
+        sizeof(double), sizeof(double),     sizeof(double), sizeof(int),
+        sizeof(int),    sizeof(int),        sizeof(int),    sizeof(int),
+        sizeof(double), sizeof(double),     sizeof(int),    sizeof(double),
+        sizeof(double), GSN_H5_STRING_SIZE, sizeof(int),    sizeof(double),
+        sizeof(int),    sizeof(int),        sizeof(int),    sizeof(int)};
     for (size_t i = 0; i < sizeof counts / sizeof counts[0]; ++i)
         GSN_CALL_GOTO(model_calloc(arrays[i], counts[i], sizes[i]), rc, fail);
+    for (size_t i = 0; i < n; ++i)
+        m->particle_volume[i] = -1;
+    for (int t = 0; t < tetrahedron_count; ++t)
+        m->tetrahedron_volume[t] = -1;
+    GSN_CALL_GOTO(gsn_model_allocate_volumes(m, 0), rc, fail);
     return GSN_OK;
 fail:
     gsn_model_free(m);
     return rc;
 }
 
+int gsn_model_allocate_volumes(struct gsn_model *m, int volume_count)
+{
+    free(m->volume_name);
+    free(m->volume_tag);
+    m->volume_name = NULL;
+    m->volume_tag = NULL;
+    m->volume_count = volume_count;
+    GSN_CALL(model_calloc((void **)&m->volume_name, (size_t)volume_count,
+                          GSN_H5_STRING_SIZE));
+    GSN_CALL(model_calloc((void **)&m->volume_tag, (size_t)volume_count,
+                          sizeof(int)));
+    return GSN_OK;
+}
+
+int gsn_model_copy_volumes(const struct gsn_model *from, struct gsn_model *to)
+{
+    GSN_CALL(gsn_model_allocate_volumes(to, from->volume_count));
+    memcpy(to->volume_name, from->volume_name,
+           sizeof *from->volume_name * (size_t)from->volume_count);
+    memcpy(to->volume_tag, from->volume_tag,
+           sizeof(int) * (size_t)from->volume_count);
+    memcpy(to->particle_volume, from->particle_volume,
+           sizeof(int) * (size_t)from->particle_count);
+    if (to->tetrahedron_count == from->tetrahedron_count)
+        memcpy(to->tetrahedron_volume, from->tetrahedron_volume,
+               sizeof(int) * (size_t)from->tetrahedron_count);
+    return GSN_OK;
+}
+
 void gsn_model_free(struct gsn_model *m)
 {
+    free(m->volume_name);
+    free(m->volume_tag);
+    free(m->particle_volume);
+    free(m->tetrahedron_volume);
     free(m->position);
     free(m->volume);
     free(m->centroid);
@@ -125,7 +166,11 @@ static void model_arrays(const struct gsn_model *m, void *data[], size_t rows[])
         [GSN_MODEL_SURFACE_TAG] = m->surface_tag,
         [GSN_MODEL_SURFACE_AREA] = m->surface_area,
         [GSN_MODEL_TETRAHEDRA] = m->tetrahedra,
-        [GSN_MODEL_TETRAHEDRON_FACE] = m->tetrahedron_face};
+        [GSN_MODEL_TETRAHEDRON_FACE] = m->tetrahedron_face,
+        [GSN_MODEL_VOLUME_NAME] = m->volume_name,
+        [GSN_MODEL_VOLUME_TAG] = m->volume_tag,
+        [GSN_MODEL_PARTICLE_VOLUME] = m->particle_volume,
+        [GSN_MODEL_TETRAHEDRON_VOLUME] = m->tetrahedron_volume};
     size_t r[GSN_MODEL_DATASET_COUNT] = {
         [GSN_MODEL_POSITION] = n,
         [GSN_MODEL_VOLUME] = n,
@@ -144,7 +189,11 @@ static void model_arrays(const struct gsn_model *m, void *data[], size_t rows[])
         [GSN_MODEL_SURFACE_TAG] = (size_t)m->surface_count,
         [GSN_MODEL_SURFACE_AREA] = (size_t)m->surface_count,
         [GSN_MODEL_TETRAHEDRA] = (size_t)m->tetrahedron_count,
-        [GSN_MODEL_TETRAHEDRON_FACE] = (size_t)m->tetrahedron_count};
+        [GSN_MODEL_TETRAHEDRON_FACE] = (size_t)m->tetrahedron_count,
+        [GSN_MODEL_VOLUME_NAME] = (size_t)m->volume_count,
+        [GSN_MODEL_VOLUME_TAG] = (size_t)m->volume_count,
+        [GSN_MODEL_PARTICLE_VOLUME] = n,
+        [GSN_MODEL_TETRAHEDRON_VOLUME] = (size_t)m->tetrahedron_count};
     memcpy(data, d, sizeof d);
     memcpy(rows, r, sizeof r);
 }
@@ -238,11 +287,18 @@ static int model_read_file(hid_t file, const char *path, struct gsn_model *m)
                          &surfaces));
     GSN_CALL(
         gsn_h5_rows(file, &gsn_model_datasets[GSN_MODEL_TETRAHEDRA], &tets));
+    size_t volumes = 0;
+    GSN_CALL(gsn_h5_rows(file, &gsn_model_datasets[GSN_MODEL_VOLUME_NAME],
+                         &volumes));
     GSN_CHECK(n < (1u << 30) && nf < (1u << 31) && points < (1u << 31) &&
                   entries < (1u << 30) && tets < (1u << 29),
               GSN_ERR_INPUT, "%s: model too large for 32-bit indices", path);
     GSN_CALL(gsn_model_allocate(m, (int)n, (int)entries, (int)nf, (int)points,
                                 (int)surfaces, (int)tets));
+    GSN_CHECK(volumes < (1u << 20), GSN_ERR_INPUT,
+              "%s: %zu physical volumes; the file is damaged, run pre again",
+              path, volumes);
+    GSN_CALL(gsn_model_allocate_volumes(m, (int)volumes));
     void *data[GSN_MODEL_DATASET_COUNT];
     size_t rows[GSN_MODEL_DATASET_COUNT];
     model_arrays(m, data, rows);
@@ -272,8 +328,14 @@ static int model_read_file(hid_t file, const char *path, struct gsn_model *m)
                            (int)n));
     GSN_CALL(check_indices(path, "mesh/tetrahedron_face", m->tetrahedron_face,
                            4 * tets, GSN_MODEL_FACE_UNTAGGED, (int)surfaces));
+    GSN_CALL(check_indices(path, "particles/physical_volume",
+                           m->particle_volume, n, -1, (int)volumes));
+    GSN_CALL(check_indices(path, "mesh/tetrahedron_volume",
+                           m->tetrahedron_volume, tets, -1, (int)volumes));
     for (size_t s = 0; s < surfaces; ++s)
         m->surface_name[s][GSN_H5_STRING_SIZE - 1] = '\0';
+    for (size_t v = 0; v < volumes; ++v)
+        m->volume_name[v][GSN_H5_STRING_SIZE - 1] = '\0';
     return GSN_OK;
 }
 
@@ -300,6 +362,14 @@ int gsn_model_particle_on_surface(const struct gsn_model *m, int particle,
         if (m->particle_surface[e] == surface)
             return 1;
     return 0;
+}
+
+int gsn_model_find_volume(const struct gsn_model *m, const char *name)
+{
+    for (int v = 0; v < m->volume_count; ++v)
+        if (strcmp(m->volume_name[v], name) == 0)
+            return v;
+    return -1;
 }
 
 int gsn_model_find_surface(const struct gsn_model *m, const char *name)

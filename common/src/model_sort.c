@@ -49,6 +49,17 @@ static int permute_doubles(double **array, const int *old_of_new, int count,
     return GSN_OK;
 }
 
+static int permute_ints(int **array, const int *old_of_new, int count)
+{
+    int *sorted = malloc(sizeof(int) * (size_t)(count ? count : 1));
+    GSN_CHECK(sorted, GSN_ERR_MEMORY, "out of memory");
+    for (int i = 0; i < count; ++i)
+        sorted[i] = (*array)[old_of_new[i]];
+    free(*array);
+    *array = sorted;
+    return GSN_OK;
+}
+
 /* Reorders a CSR list (offset, values) by old_of_new rows, renaming
  * values through rename (or not, if NULL). */
 static int permute_csr(int **offset, int **values, const int *old_of_new,
@@ -176,6 +187,7 @@ int gsn_model_sort_spatially(struct gsn_model *m)
     GSN_CALL_GOTO(permute_doubles(&m->position, old_of_new, n, 3), rc, done);
     GSN_CALL_GOTO(permute_doubles(&m->volume, old_of_new, n, 1), rc, done);
     GSN_CALL_GOTO(permute_doubles(&m->centroid, old_of_new, n, 3), rc, done);
+    GSN_CALL_GOTO(permute_ints(&m->particle_volume, old_of_new, n), rc, done);
     GSN_CALL_GOTO(permute_csr(&m->particle_surface_offset, &m->particle_surface,
                               old_of_new, n, NULL),
                   rc, done);

@@ -37,12 +37,17 @@ struct post_mesh {
     int tetrahedron_count;
     int *tetrahedra;  /* tetrahedron_count x 4 */
     double bounds[6]; /* of the reference positions, m */
+    /* the site (post_site_fields): each point's physical volume (its
+     * index) and pore pressure (Pa) at X; NULL without volumes, water */
+    double *volume, *pore_pressure;
 };
 
 static void post_mesh_free(struct post_mesh *mesh)
 {
     free(mesh->reference);
     free(mesh->tetrahedra);
+    free(mesh->volume);
+    free(mesh->pore_pressure);
     memset(mesh, 0, sizeof *mesh);
 }
 
@@ -429,6 +434,27 @@ static int post_frame_pictures(const struct gsn_vtk_grid *grid,
     }
     if (index != count - 1)
         return GSN_OK;
+    const struct {
+        const double *values;
+        enum gsn_vtk_picture picture;
+        const char *file, *what;
+    } site[] = {{mesh->volume, GSN_VTK_PICTURE_LAYERS, "layers",
+                 "the physical volumes (layers)"},
+                {mesh->pore_pressure, GSN_VTK_PICTURE_PORE_PRESSURE,
+                 "pore_pressure", "the water table's pore pressure"}};
+    for (size_t k = 0; k < sizeof site / sizeof site[0]; ++k) {
+        if (!site[k].values)
+            continue;
+        snprintf(title, sizeof title, "%s: %s, t = %.6g s", case_name,
+                 site[k].what, frame->time);
+        int n = snprintf(path, sizeof path, "%s/%s_frame_%04d.png", folder,
+                         site[k].file, index);
+        GSN_CHECK(n > 0 && (size_t)n < sizeof path, GSN_ERR_INPUT,
+                  "path too long: %s", folder);
+        GSN_CALL(post_picture_write(grid, site[k].picture, mesh->bounds, title,
+                                    path));
+        ++*written;
+    }
     double middle = 0.5 * (mesh->bounds[2] + mesh->bounds[3]);
     for (size_t k = 0; k < sizeof clips / sizeof clips[0]; ++k) {
         if (!post_picture_drawable(frame, clips[k].picture, noted))
@@ -803,6 +829,70 @@ static void post_note_incomplete(hid_t results, const char *path,
                         : "");
 }
 
+/* The site's fields at the mesh's points (mirrored ones too): the physical
+ * volume of each particle (model.h5, when it has layers: two volumes or
+ * more) and the water
+ * table's pore pressure at its reference position (the case's water:). */
+static int post_site_fields(const char *model_path, const struct gsn_case *c,
+                            int have_case, const struct post_mirror *mirror,
+                            struct post_mesh *mesh)
+{
+    const struct gsn_dataset_info *names =
+        &gsn_model_datasets[GSN_MODEL_VOLUME_NAME];
+    const struct gsn_dataset_info *owner =
+        &gsn_model_datasets[GSN_MODEL_PARTICLE_VOLUME];
+    int n = mesh->point_count, rc = GSN_OK;
+    int half = mirror->active ? mirror->half_count : n;
+    size_t volumes = 0, rows = 0;
+    int *index = NULL;
+    hid_t file = H5I_INVALID_HID;
+    GSN_CALL(gsn_h5_open(model_path, GSN_FILE_KIND_MODEL, 0, &file));
+    GSN_CALL_GOTO(gsn_h5_rows(file, names, &volumes), rc, done);
+    if (volumes > 1) {
+        GSN_CALL_GOTO(gsn_h5_rows(file, owner, &rows), rc, done);
+        GSN_CHECK_GOTO(rows == (size_t)half, rc, GSN_ERR_INPUT, done,
+                       "%s: %s has %zu rows for %d particles; run pre again",
+                       model_path, owner->path, rows, half);
+        index = malloc(sizeof(int) * (rows + 1));
+        mesh->volume = malloc(sizeof(double) * ((size_t)n + 1));
+        GSN_CHECK_GOTO(index && mesh->volume, rc, GSN_ERR_MEMORY, done,
+                       "out of memory");
+        GSN_CALL_GOTO(gsn_h5_read(file, owner, rows, index), rc, done);
+        for (int i = 0; i < half; ++i) {
+            mesh->volume[i] = index[i];
+            if (mirror->active)
+                mesh->volume[mirror->image[i]] = index[i];
+        }
+    }
+    if (have_case && c->water.present) {
+        mesh->pore_pressure = malloc(sizeof(double) * ((size_t)n + 1));
+        GSN_CHECK_GOTO(mesh->pore_pressure, rc, GSN_ERR_MEMORY, done,
+                       "out of memory");
+        for (int i = 0; i < n; ++i)
+            mesh->pore_pressure[i] =
+                gsn_water_pressure(c, &mesh->reference[3 * (size_t)i]);
+    }
+done:
+    free(index);
+    gsn_h5_close(&file);
+    return rc;
+}
+
+/* The grid of a frame with the site's fields. */
+static int post_grid(const struct post_mesh *mesh,
+                     const struct gsn_frame *frame, struct gsn_vtk_grid **grid)
+{
+    GSN_CALL(gsn_vtk_grid_create(mesh->point_count, mesh->reference,
+                                 mesh->tetrahedron_count, mesh->tetrahedra,
+                                 frame, grid));
+    if (mesh->volume)
+        GSN_CALL(gsn_vtk_grid_add_point_field(*grid, "volume", mesh->volume));
+    if (mesh->pore_pressure)
+        GSN_CALL(gsn_vtk_grid_add_point_field(*grid, "pore_pressure",
+                                              mesh->pore_pressure));
+    return GSN_OK;
+}
+
 struct post_state {
     hid_t results;
     struct post_mesh mesh;
@@ -864,6 +954,7 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
                    s->mesh.tetrahedron_count);
     }
 
+    GSN_CALL(post_site_fields(path, s->c, have_case, &s->mirror, &s->mesh));
     int pictures = !o->no_pictures;
     if (pictures) {
         GSN_CALL(gsn_display_open(&s->display));
@@ -898,9 +989,7 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
         } else {
             GSN_CALL(gsn_results_frame_read(s->results, k, &s->frame));
         }
-        GSN_CALL(gsn_vtk_grid_create(s->mesh.point_count, s->mesh.reference,
-                                     s->mesh.tetrahedron_count,
-                                     s->mesh.tetrahedra, &s->frame, &s->grid));
+        GSN_CALL(post_grid(&s->mesh, &s->frame, &s->grid));
         GSN_CALL(post_frame_path(outdir, k, path, sizeof path));
         GSN_CALL(post_vtu_write(s->grid, path));
         if (pictures)

@@ -143,7 +143,8 @@ vtkSmartPointer<vtkLookupTable> rainbow(double low, double high)
 
 struct picture_spec {
     const char *bar_title;
-    int field;     // frame field
+    int field; // frame field, or -1: the point array named array
+    const char *array;
     int component; // column of the field; -1: the length of its row
     double scale;  // shown value = scale * field value
     bool clip;
@@ -153,21 +154,33 @@ picture_spec picture_spec_of(int picture)
 {
     switch (picture) {
     case GSN_VTK_PICTURE_CLIP_UX:
-        return {"u_x [m]", GSN_FRAME_DISPLACEMENT, 0, 1.0, true};
+        return {"u_x [m]", GSN_FRAME_DISPLACEMENT, nullptr, 0, 1.0, true};
     case GSN_VTK_PICTURE_CLIP_UY:
-        return {"u_y [m]", GSN_FRAME_DISPLACEMENT, 1, 1.0, true};
+        return {"u_y [m]", GSN_FRAME_DISPLACEMENT, nullptr, 1, 1.0, true};
     case GSN_VTK_PICTURE_CLIP_UZ:
-        return {"u_z [m]", GSN_FRAME_DISPLACEMENT, 2, 1.0, true};
+        return {"u_z [m]", GSN_FRAME_DISPLACEMENT, nullptr, 2, 1.0, true};
     case GSN_VTK_PICTURE_CLIP_EQUIVALENT_STRESS:
-        return {"equivalent stress [kPa]", GSN_FRAME_EQUIVALENT_STRESS, 0, 1e-3,
+        return {"equivalent stress [kPa]",
+                GSN_FRAME_EQUIVALENT_STRESS,
+                nullptr,
+                0,
+                1e-3,
                 true};
     case GSN_VTK_PICTURE_CLIP_DISPLACEMENT:
-        return {"|u| [m]", GSN_FRAME_DISPLACEMENT, -1, 1.0, true};
+        return {"|u| [m]", GSN_FRAME_DISPLACEMENT, nullptr, -1, 1.0, true};
     case GSN_VTK_PICTURE_CLIP_EQUIVALENT_PLASTIC_STRAIN:
         return {"equivalent plastic strain [-]",
-                GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN, 0, 1.0, true};
+                GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN,
+                nullptr,
+                0,
+                1.0,
+                true};
+    case GSN_VTK_PICTURE_LAYERS:
+        return {"volume (layer) [-]", -1, "volume", 0, 1.0, false};
+    case GSN_VTK_PICTURE_PORE_PRESSURE:
+        return {"pore pressure [kPa]", -1, "pore_pressure", 0, 1e-3, false};
     default:
-        return {"damage [-]", GSN_FRAME_DAMAGE, 0, 1.0, false};
+        return {"damage [-]", GSN_FRAME_DAMAGE, nullptr, 0, 1.0, false};
     }
 }
 
@@ -227,10 +240,11 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
     vtkIdType n = grid->GetNumberOfPoints();
 
     // The shown scalar, scaled to the bar's units, on a shallow copy.
-    vtkDataArray *source =
-        grid->GetPointData()->GetArray(gsn_frame_fields[spec.field].path);
+    const char *array =
+        spec.field >= 0 ? gsn_frame_fields[spec.field].path : spec.array;
+    vtkDataArray *source = grid->GetPointData()->GetArray(array);
     GSN_CHECK(source != nullptr, GSN_ERR_INTERNAL, "grid lacks the array %s",
-              gsn_frame_fields[spec.field].path);
+              array);
     vtkNew<vtkDoubleArray> shown;
     shown->SetName("shown");
     shown->SetNumberOfTuples(n);
@@ -554,6 +568,25 @@ extern "C" int gsn_vtk_grid_create(int point_count, const double *reference,
         return raise_exception(__func__, "unknown exception");
     }
     *grid = g;
+    return GSN_OK;
+}
+
+extern "C" int gsn_vtk_grid_add_point_field(struct gsn_vtk_grid *grid,
+                                            const char *name,
+                                            const double *values)
+{
+    try {
+        vtkIdType n = grid->grid->GetNumberOfPoints();
+        vtkNew<vtkDoubleArray> array;
+        array->SetName(name);
+        array->SetNumberOfTuples(n);
+        std::copy(values, values + n, array->GetPointer(0));
+        grid->grid->GetPointData()->AddArray(array);
+    } catch (const std::exception &e) {
+        return raise_exception(__func__, e.what());
+    } catch (...) {
+        return raise_exception(__func__, "unknown exception");
+    }
     return GSN_OK;
 }
 

@@ -27,6 +27,11 @@ int gsn_vtk_grid_create(int point_count, const double *reference,
                         const struct gsn_frame *frame,
                         struct gsn_vtk_grid **grid);
 
+/* Adds a scalar point array (point_count values, copied) named name: the
+ * site's fields that no frame holds (post.c: volume, pore_pressure). */
+int gsn_vtk_grid_add_point_field(struct gsn_vtk_grid *grid, const char *name,
+                                 const double *values);
+
 /* Frees the grid and sets *grid to NULL; accepts NULL. */
 void gsn_vtk_grid_destroy(struct gsn_vtk_grid **grid);
 
@@ -42,10 +47,13 @@ enum gsn_vtk_picture {
     GSN_VTK_PICTURE_CLIP_EQUIVALENT_STRESS,
     GSN_VTK_PICTURE_CLIP_DISPLACEMENT, /* |u| */
     GSN_VTK_PICTURE_CLIP_EQUIVALENT_PLASTIC_STRAIN,
+    GSN_VTK_PICTURE_LAYERS,        /* the physical volume, on the body */
+    GSN_VTK_PICTURE_PORE_PRESSURE, /* the water table's u, on the body */
     GSN_VTK_PICTURE_COUNT
 };
 
-/* The frame field (enum gsn_frame_field) a picture shows. */
+/* The frame field (enum gsn_frame_field) a picture shows, or -1 for the
+ * site's pictures (layers, pore pressure: a point array of that name). */
 int gsn_vtk_picture_field(enum gsn_vtk_picture picture);
 
 /* Renders a picture of the grid to a PNG (needs an X display). bounds

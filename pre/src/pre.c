@@ -71,10 +71,18 @@ struct mesh {
     char (*surface_name)[GSN_H5_STRING_SIZE];
     int *surface_tag;
     int *particle_surface_offset, *particle_surface;
+    int volume_count; /* physical volumes */
+    char (*volume_name)[GSN_H5_STRING_SIZE];
+    int *volume_tag;
+    int *tetrahedron_volume, *particle_volume; /* -1: in none */
 };
 
 static void mesh_free(struct mesh *m)
 {
+    free(m->volume_name);
+    free(m->volume_tag);
+    free(m->tetrahedron_volume);
+    free(m->particle_volume);
     free(m->position);
     free(m->tetrahedra);
     free(m->face_label);
@@ -289,13 +297,14 @@ static int gmsh_generate(const struct gsn_case *c, int reproducible)
 
 /* Node tags of the tetrahedra become particle indices 0.. in tag order. */
 static int mesh_read_tetrahedra(const struct gsn_case *c, struct mesh *m,
-                                int **index_of_tag, size_t *tag_limit)
+                                int **index_of_tag, size_t *tag_limit,
+                                size_t **element_tags)
 {
     size_t *elements = NULL, element_count = 0, *nodes = NULL, node_count = 0;
     int ierr = 0, rc = GSN_OK;
     gmshModelMeshGetElementsByType(GMSH_TETRAHEDRON, &elements, &element_count,
                                    &nodes, &node_count, -1, 0, 1, &ierr);
-    gmshFree(elements);
+    *element_tags = elements; /* gmshFree'd by the caller */
     GSN_CHECK_GOTO(ierr == 0, rc, GSN_ERR_LIBRARY, done,
                    "cannot read the tetrahedra");
     size_t nt = node_count / 4;
@@ -465,6 +474,104 @@ done:
     return rc;
 }
 
+/* The physical volumes: names, tags and each tetrahedron's (element_tags:
+ * the gmsh tag of tetrahedron t, in mesh order). */
+static int mesh_read_volumes(struct mesh *m, const size_t *element_tags)
+{
+    int *groups = NULL, ierr = 0, rc = GSN_OK;
+    size_t group_count = 0, limit = 0, nt = (size_t)m->tetrahedron_count;
+    int *tetrahedron_of = NULL;
+    gmshModelGetPhysicalGroups(&groups, &group_count, 3, &ierr);
+    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot list the physical volumes");
+    int nv = (int)(group_count / 2);
+    for (size_t t = 0; t < nt; ++t)
+        limit = element_tags[t] + 1 > limit ? element_tags[t] + 1 : limit;
+    m->volume_count = nv;
+    m->volume_name = calloc((size_t)nv + 1, sizeof *m->volume_name);
+    m->volume_tag = calloc((size_t)nv + 1, sizeof(int));
+    m->tetrahedron_volume = malloc(sizeof(int) * (nt + 1));
+    tetrahedron_of = malloc(sizeof(int) * (limit + 1));
+    GSN_CHECK_GOTO(m->volume_name && m->volume_tag && m->tetrahedron_volume &&
+                       tetrahedron_of,
+                   rc, GSN_ERR_MEMORY, done, "cannot allocate the volumes");
+    for (size_t i = 0; i <= limit; ++i)
+        tetrahedron_of[i] = -1;
+    for (size_t t = 0; t < nt; ++t) {
+        tetrahedron_of[element_tags[t]] = (int)t;
+        m->tetrahedron_volume[t] = -1;
+    }
+    for (int v = 0; v < nv; ++v) {
+        int tag = groups[2 * v + 1];
+        char *name = NULL;
+        gmshModelGetPhysicalName(3, tag, &name, &ierr);
+        snprintf(m->volume_name[v], sizeof m->volume_name[v], "%s",
+                 ierr == 0 && name && name[0] ? name : "");
+        if (!m->volume_name[v][0])
+            snprintf(m->volume_name[v], sizeof m->volume_name[v], "%d", tag);
+        gmshFree(name);
+        m->volume_tag[v] = tag;
+        int *entities = NULL;
+        size_t entity_count = 0;
+        ierr = 0;
+        gmshModelGetEntitiesForPhysicalGroup(3, tag, &entities, &entity_count,
+                                             &ierr);
+        for (size_t e = 0; ierr == 0 && e < entity_count; ++e) {
+            size_t *elements = NULL, count = 0, *nodes = NULL, node_count = 0;
+            gmshModelMeshGetElementsByType(GMSH_TETRAHEDRON, &elements, &count,
+                                           &nodes, &node_count, entities[e], 0,
+                                           1, &ierr);
+            for (size_t k = 0; ierr == 0 && k < count; ++k)
+                if (elements[k] < limit && tetrahedron_of[elements[k]] >= 0)
+                    m->tetrahedron_volume[tetrahedron_of[elements[k]]] = v;
+            gmshFree(elements);
+            gmshFree(nodes);
+        }
+        gmshFree(entities);
+        GSN_CHECK_GOTO(ierr == 0, rc, GSN_ERR_LIBRARY, done,
+                       "cannot read physical volume %s", m->volume_name[v]);
+    }
+done:
+    free(tetrahedron_of);
+    gmshFree(groups);
+    return rc;
+}
+
+/* Each particle's volume: the one whose tetrahedra around it have the
+ * largest volume (a particle on an interface between layers belongs to
+ * both; the lower index on a tie). */
+static int mesh_particle_volumes(struct mesh *m)
+{
+    int n = m->node_count, nv = m->volume_count;
+    m->particle_volume = malloc(sizeof(int) * ((size_t)n + 1));
+    double *share =
+        calloc((size_t)n * (size_t)(nv > 0 ? nv : 1), sizeof(double));
+    if (!m->particle_volume || !share) {
+        free(share);
+        GSN_CHECK(0, GSN_ERR_MEMORY, "cannot allocate the particles' volumes");
+    }
+    for (int t = 0; t < m->tetrahedron_count; ++t) {
+        int v = m->tetrahedron_volume[t];
+        if (v < 0)
+            continue;
+        double size = fabs(
+            gsn_body_tetrahedron_volume(m->position, &m->tetrahedra[4 * t]));
+        for (int k = 0; k < 4; ++k)
+            share[(size_t)m->tetrahedra[4 * t + k] * (size_t)nv + (size_t)v] +=
+                size;
+    }
+    for (int i = 0; i < n; ++i) {
+        int best = -1;
+        for (int v = 0; v < nv; ++v)
+            if (share[(size_t)i * (size_t)nv + (size_t)v] > 0.0 &&
+                (best < 0 || share[(size_t)i * (size_t)nv + (size_t)v] >
+                                 share[(size_t)i * (size_t)nv + (size_t)best]))
+                best = v;
+        m->particle_volume[i] = best;
+    }
+    free(share);
+    return GSN_OK;
+}
+
 /* Label of every face of every tetrahedron: internal (shared by two),
  * a physical surface, or an untagged boundary. */
 static int mesh_label_faces(struct mesh *m, const struct face_hash *surface_of)
@@ -512,22 +619,128 @@ done:
 
 /* Every boundary of the case names a physical surface of the geometry:
  * checked right after gmsh reads it, before any meshing (pre and check). */
-static int pre_check_boundaries(const struct gsn_case *c)
+/* names as "a, b, c" (unnamed: "(unnamed)"; none: "none"). */
+static void join_names(char *const *names, size_t count, char *out, size_t size)
+{
+    snprintf(out, size, "none");
+    size_t used = 0;
+    for (size_t g = 0; g < count && used + 1 < size; ++g) {
+        int w = snprintf(out + used, size - used, "%s%s", g ? ", " : "",
+                         names[g][0] ? names[g] : "(unnamed)");
+        used += w > 0 ? (size_t)w : 0;
+    }
+}
+
+/* The names of the physical groups of dimension dim, NULL-terminated;
+ * free with names_free. */
+static int physical_names(int dim, char ***out, size_t *count)
 {
     int *groups = NULL, ierr = 0, rc = GSN_OK;
     size_t group_count = 0;
-    gmshModelGetPhysicalGroups(&groups, &group_count, 2, &ierr);
-    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot list the physical surfaces");
-    size_t count = group_count / 2;
-    char **names = calloc(count + 1, sizeof *names); /* NULL-terminated */
+    gmshModelGetPhysicalGroups(&groups, &group_count, dim, &ierr);
+    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot list the physical groups");
+    *count = group_count / 2;
+    char **names = calloc(*count + 1, sizeof *names);
     GSN_CHECK_GOTO(names != NULL, rc, GSN_ERR_MEMORY, done,
-                   "cannot allocate %zu surface names", count);
-    for (size_t g = 0; g < count; ++g) {
-        gmshModelGetPhysicalName(2, groups[2 * g + 1], &names[g], &ierr);
+                   "cannot allocate %zu names", *count);
+    for (size_t g = 0; g < *count; ++g) {
+        gmshModelGetPhysicalName(dim, groups[2 * g + 1], &names[g], &ierr);
         GSN_CHECK_GOTO(ierr == 0 && names[g], rc, GSN_ERR_LIBRARY, done,
-                       "cannot read the name of physical surface %d",
+                       "cannot read the name of physical group %d",
                        groups[2 * g + 1]);
     }
+done:
+    gmshFree(groups);
+    *out = names;
+    return rc;
+}
+
+static void names_free(char **names, size_t count)
+{
+    for (size_t g = 0; names && g < count; ++g)
+        gmshFree(names[g]);
+    free(names);
+}
+
+/* materials: against the geometry's physical volumes: every entry names
+ * one, and every part of the body lies in exactly one that has a soil. */
+static int pre_check_volumes(const struct gsn_case *c)
+{
+    char **names = NULL, list[1024];
+    size_t count = 0;
+    int *entities = NULL, ierr = 0, rc = GSN_OK;
+    size_t entity_count = 0;
+    GSN_CALL_GOTO(physical_names(3, &names, &count), rc, done);
+    join_names(names, count, list, sizeof list);
+    for (int k = 0; c->materials_by_volume && k < c->material_count; ++k) {
+        const char *name = c->materials[k].volume;
+        int found = 0;
+        for (size_t g = 0; g < count && !found; ++g)
+            found = strcmp(names[g], name) == 0;
+        if (found)
+            continue;
+        const char *guess = gsn_closest_word(name, (const char *const *)names);
+        GSN_CHECK_GOTO(
+            0, rc, GSN_ERR_INPUT, done,
+            "%s:%d: 'materials.%s' names no physical volume of %s%s%s"
+            "%s (it has: %s)%s",
+            c->path, c->materials[k].line.entry, name, c->geometry,
+            guess ? "; did you mean '" : "", guess ? guess : "",
+            guess ? "'?" : "", list,
+            count ? ""
+                  : "; name the volumes in the geometry: "
+                    "Physical Volume(\"clay\") = {1};");
+    }
+    gmshModelGetEntities(&entities, &entity_count, 3, &ierr);
+    GMSH_CHECK(ierr, GSN_ERR_LIBRARY, "cannot list the volumes");
+    for (size_t e = 0; e < entity_count / 2; ++e) {
+        int tag = entities[2 * e + 1], *groups = NULL;
+        size_t group_count = 0;
+        gmshModelGetPhysicalGroupsForEntity(3, tag, &groups, &group_count,
+                                            &ierr);
+        char *first = NULL, *second = NULL;
+        if (group_count > 0)
+            gmshModelGetPhysicalName(3, groups[0], &first, &ierr);
+        if (group_count > 1)
+            gmshModelGetPhysicalName(3, groups[1], &second, &ierr);
+        gmshFree(groups);
+        int material = first ? gsn_case_find_material(c, first) : -1;
+        char text[3 * GSN_PATH_SIZE] = "";
+        if (group_count > 1)
+            snprintf(text, sizeof text,
+                     "%s: volume %d lies in the physical volumes '%s' and "
+                     "'%s'; a part of the body has one soil: keep it in one",
+                     c->geometry, tag, first ? first : "",
+                     second ? second : "");
+        else if (c->materials_by_volume && group_count == 0)
+            snprintf(text, sizeof text,
+                     "%s: volume %d lies in no physical volume, so "
+                     "'materials' (%s) gives it no soil; add it to one, "
+                     "e.g. Physical Volume(\"clay\") = {%d}; (the "
+                     "geometry's: %s)",
+                     c->geometry, tag, c->path, tag, list);
+        else if (c->materials_by_volume && material < 0)
+            snprintf(text, sizeof text,
+                     "%s: physical volume '%s' has no soil in %s: add "
+                     "'%s: {density: ..., bulk_modulus: ..., shear_modulus: "
+                     "...}' under 'materials'",
+                     c->geometry, first, c->path, first);
+        gmshFree(first);
+        gmshFree(second);
+        GSN_CHECK_GOTO(!text[0], rc, GSN_ERR_INPUT, done, "%s", text);
+    }
+done:
+    gmshFree(entities);
+    names_free(names, count);
+    return rc;
+}
+
+static int pre_check_boundaries(const struct gsn_case *c)
+{
+    char **names = NULL, list[1024];
+    size_t count = 0;
+    int rc = GSN_OK;
+    GSN_CALL_GOTO(physical_names(2, &names, &count), rc, done);
     for (int b = 0; b < c->boundary_count; ++b) {
         const char *name = c->boundaries[b].name;
         int found = 0;
@@ -535,14 +748,8 @@ static int pre_check_boundaries(const struct gsn_case *c)
             found = strcmp(names[g], name) == 0;
         if (found)
             continue;
-        char list[1024] = "none", hint[GSN_H5_STRING_SIZE + 32] = "";
-        size_t used = 0;
-        for (size_t g = 0; g < count && used + 1 < sizeof list; ++g) {
-            int w =
-                snprintf(list + used, sizeof list - used, "%s%s", g ? ", " : "",
-                         names[g][0] ? names[g] : "(unnamed)");
-            used += w > 0 ? (size_t)w : 0;
-        }
+        char hint[GSN_H5_STRING_SIZE + 32] = "";
+        join_names(names, count, list, sizeof list);
         const char *guess = gsn_closest_word(name, (const char *const *)names);
         if (guess)
             snprintf(hint, sizeof hint, "; did you mean '%s'?", guess);
@@ -553,18 +760,17 @@ static int pre_check_boundaries(const struct gsn_case *c)
                        list);
     }
 done:
-    for (size_t g = 0; names && g < count; ++g)
-        gmshFree(names[g]);
-    free(names);
-    gmshFree(groups);
+    names_free(names, count);
     return rc;
 }
 
 /* What pre checks in the geometry before meshing: the boundaries' and the
- * refinements' surfaces exist, symmetry planes are axis-aligned. */
+ * refinements' surfaces exist, symmetry planes are axis-aligned, the
+ * materials' volumes exist and fill the body. */
 static int pre_check_surfaces(const struct gsn_case *c)
 {
     GSN_CALL(pre_check_boundaries(c));
+    GSN_CALL(pre_check_volumes(c));
     GSN_CALL(pre_refine_check(c));
     return GSN_OK;
 }
@@ -665,11 +871,16 @@ static int pre_mesh(struct pre_child *child, const struct gsn_case *c,
     GSN_CALL(gmsh_generate(c, reproducible));
     pre_child_stage(child, "reading its mesh");
     int *index = NULL;
-    size_t limit = 0;
+    size_t limit = 0, *element_tags = NULL;
     int rc = GSN_OK;
     struct face_hash surface_of;
     memset(&surface_of, 0, sizeof surface_of);
-    GSN_CALL(mesh_read_tetrahedra(c, m, &index, &limit));
+    rc = mesh_read_tetrahedra(c, m, &index, &limit, &element_tags);
+    if (rc == GSN_OK)
+        rc = mesh_read_volumes(m, element_tags);
+    gmshFree(element_tags);
+    GSN_CALL_GOTO(rc, rc, done);
+    GSN_CALL_GOTO(mesh_particle_volumes(m), rc, done);
     GSN_CALL_GOTO(
         face_hash_create(&surface_of, (size_t)m->tetrahedron_count + 1024), rc,
         done);
@@ -688,8 +899,8 @@ struct pre_job {
 };
 
 /* The counts of a mesh as sent: particles, tetrahedra, surfaces, surface
- * entries of the particles. */
-enum { MESH_ARRAYS = 9 };
+ * entries of the particles, volumes. */
+enum { MESH_ARRAYS = 13 };
 
 /* pre's child: the mesh, sent array by array (mesh_receive). */
 static int pre_mesh_child(struct pre_child *child, void *arg)
@@ -703,8 +914,9 @@ static int pre_mesh_child(struct pre_child *child, void *arg)
     double numbers[1] = {0}; /* the estimate */
     int rc = pre_mesh(child, c, job->options, &m, &numbers[0]);
     int n = m.node_count, nt = m.tetrahedron_count, ns = m.surface_count;
-    int counts[4] = {n, nt, ns,
-                     rc == GSN_OK ? m.particle_surface_offset[n] : 0};
+    int nv = m.volume_count;
+    int counts[5] = {n, nt, ns, rc == GSN_OK ? m.particle_surface_offset[n] : 0,
+                     nv};
     const void *data[MESH_ARRAYS] = {counts,
                                      numbers,
                                      m.position,
@@ -713,7 +925,11 @@ static int pre_mesh_child(struct pre_child *child, void *arg)
                                      m.surface_name,
                                      m.surface_tag,
                                      m.particle_surface_offset,
-                                     m.particle_surface};
+                                     m.particle_surface,
+                                     m.volume_name,
+                                     m.volume_tag,
+                                     m.tetrahedron_volume,
+                                     m.particle_volume};
     size_t size[MESH_ARRAYS] = {sizeof counts,
                                 sizeof numbers,
                                 sizeof(double) * 3 * (size_t)n,
@@ -722,7 +938,11 @@ static int pre_mesh_child(struct pre_child *child, void *arg)
                                 sizeof *m.surface_name * (size_t)ns,
                                 sizeof(int) * (size_t)ns,
                                 sizeof(int) * ((size_t)n + 1),
-                                sizeof(int) * (size_t)counts[3]};
+                                sizeof(int) * (size_t)counts[3],
+                                sizeof *m.volume_name * (size_t)nv,
+                                sizeof(int) * (size_t)nv,
+                                sizeof(int) * (size_t)nt,
+                                sizeof(int) * (size_t)n};
     for (int i = 0; rc == GSN_OK && i < MESH_ARRAYS; ++i)
         rc = pre_child_send(child, data[i], size[i]);
     mesh_free(&m);
@@ -733,14 +953,15 @@ static int pre_mesh_child(struct pre_child *child, void *arg)
 static int mesh_receive(struct pre_child_result *r, struct mesh *m,
                         double *estimate)
 {
-    GSN_CHECK(r->array_count == MESH_ARRAYS && r->size[0] == sizeof(int[4]) &&
+    GSN_CHECK(r->array_count == MESH_ARRAYS && r->size[0] == sizeof(int[5]) &&
                   r->size[1] == sizeof(double[1]),
               GSN_ERR_INTERNAL, "the meshing process sent %d arrays",
               r->array_count);
     const int *counts = r->array[0];
     const double *numbers = r->array[1];
     size_t n = (size_t)counts[0], nt = (size_t)counts[1],
-           ns = (size_t)counts[2], entries = (size_t)counts[3];
+           ns = (size_t)counts[2], entries = (size_t)counts[3],
+           nv = (size_t)counts[4];
     size_t expected[MESH_ARRAYS] = {r->size[0],
                                     r->size[1],
                                     sizeof(double) * 3 * n,
@@ -749,7 +970,11 @@ static int mesh_receive(struct pre_child_result *r, struct mesh *m,
                                     sizeof *m->surface_name * ns,
                                     sizeof(int) * ns,
                                     sizeof(int) * (n + 1),
-                                    sizeof(int) * entries};
+                                    sizeof(int) * entries,
+                                    sizeof *m->volume_name * nv,
+                                    sizeof(int) * nv,
+                                    sizeof(int) * nt,
+                                    sizeof(int) * n};
     for (int i = 0; i < MESH_ARRAYS; ++i)
         GSN_CHECK(r->size[i] == expected[i], GSN_ERR_INTERNAL,
                   "array %d from the meshing process has %zu bytes, not %zu", i,
@@ -757,6 +982,7 @@ static int mesh_receive(struct pre_child_result *r, struct mesh *m,
     m->node_count = counts[0];
     m->tetrahedron_count = counts[1];
     m->surface_count = counts[2];
+    m->volume_count = counts[4];
     *estimate = numbers[0];
     void **take[MESH_ARRAYS] = {NULL,
                                 NULL,
@@ -766,7 +992,11 @@ static int mesh_receive(struct pre_child_result *r, struct mesh *m,
                                 (void **)&m->surface_name,
                                 (void **)&m->surface_tag,
                                 (void **)&m->particle_surface_offset,
-                                (void **)&m->particle_surface};
+                                (void **)&m->particle_surface,
+                                (void **)&m->volume_name,
+                                (void **)&m->volume_tag,
+                                (void **)&m->tetrahedron_volume,
+                                (void **)&m->particle_volume};
     for (int i = 2; i < MESH_ARRAYS; ++i) {
         *take[i] = r->array[i];
         r->array[i] = NULL;
@@ -810,6 +1040,21 @@ static int pre_mesh_isolated(const struct gsn_case *c,
     GSN_CALL(rc);
     return GSN_OK;
 }
+/* The particles of each physical volume, on one line. */
+static void pre_volume_report(const struct gsn_model *m)
+{
+    if (m->volume_count == 0)
+        return;
+    printf("pre: volumes");
+    for (int v = 0; v < m->volume_count; ++v) {
+        int count = 0;
+        for (int i = 0; i < m->particle_count; ++i)
+            count += m->particle_volume[i] == v;
+        printf("%s %s %d particles", v ? "," : "", m->volume_name[v], count);
+    }
+    printf("\n");
+}
+
 int gsn_pre_run(const struct gsn_case *c, const char *outdir,
                 const struct gsn_pre_options *options)
 {
@@ -832,6 +1077,12 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
     double estimate = 0.0;
     GSN_CALL_GOTO(pre_mesh_isolated(c, options, &mesh, &estimate), rc, done);
     double t_mesh = omp_get_wtime() - t0;
+    if (!c->materials_by_volume && mesh.volume_count > 1)
+        fprintf(stderr,
+                "warning: %s: %s has %d physical volumes, and 'material' "
+                "gives them all one soil; give each its own under "
+                "'materials' (docs/material.md, \"Layers\")\n",
+                c->path, c->geometry, mesh.volume_count);
 
     /* The particles, their surfaces and the body's tetrahedra, in Morton
      * order (the solver's passes then find neighbours in cache), then
@@ -851,6 +1102,15 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
     memcpy(bare.surface_tag, mesh.surface_tag, sizeof(int) * (size_t)ns);
     memcpy(bare.tetrahedra, mesh.tetrahedra,
            sizeof(int) * 4 * (size_t)mesh.tetrahedron_count);
+    GSN_CALL_GOTO(gsn_model_allocate_volumes(&bare, mesh.volume_count), rc,
+                  done);
+    memcpy(bare.volume_name, mesh.volume_name,
+           sizeof *bare.volume_name * (size_t)mesh.volume_count);
+    memcpy(bare.volume_tag, mesh.volume_tag,
+           sizeof(int) * (size_t)mesh.volume_count);
+    memcpy(bare.particle_volume, mesh.particle_volume, sizeof(int) * (size_t)n);
+    memcpy(bare.tetrahedron_volume, mesh.tetrahedron_volume,
+           sizeof(int) * (size_t)mesh.tetrahedron_count);
     for (int f = 0; f < 4 * mesh.tetrahedron_count; ++f)
         bare.tetrahedron_face[f] =
             gsn_cells_face_from_label(mesh.face_label[f]);
@@ -896,6 +1156,7 @@ int gsn_pre_run(const struct gsn_case *c, const char *outdir,
                reproducible ? ": the same particles on every run"
                             : ", not reproducible: particles.mesher",
                check.time_delaunay, check.time_cells, t_write, path);
+        pre_volume_report(&m);
         GSN_CALL_GOTO(pre_refine_report(c, &m), rc, done);
     }
 done:

@@ -88,7 +88,8 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
                         e->reference_offset,
                         e->reference_gradient,
                         e->block_distortion,
-                        e->contact_force};
+                        e->contact_force,
+                        e->pore_pressure};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         free(arrays[i]);
     free(e->point_failed);
@@ -102,6 +103,7 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     free(e->step_partial);
     free(e->constrained);
     free(e->point_dead);
+    free(e->point_material);
     free(e);
     *handle = NULL;
 }
@@ -337,9 +339,45 @@ void gsn_explicit_set_constraints(struct gsn_explicit *e,
     }
 }
 
+/* Each main point's material (its particle's), pore pressure (water:) and
+ * mass: the density, saturated below the table, times its weight. */
+static int point_soil(struct gsn_explicit *e, const struct gsn_case *c)
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    int main = e->main_point_count;
+    if (c->water.present)
+        GSN_CALL(alloc_array((void **)&e->pore_pressure, (size_t)main,
+                             sizeof(double)));
+    for (int p = 0; p < main; ++p) {
+        int k = e->materials->particle_material[e->point_owner[p]];
+        const struct gsn_material *soil = e->materials->parameters[k];
+        double u = gsn_water_pressure(c, &q->point_position[3 * (size_t)p]);
+        e->point_material[p] = (unsigned char)k;
+        if (e->pore_pressure)
+            e->pore_pressure[p] = u;
+        e->point_mass[p] = (u > 0.0 ? soil->saturated_density : soil->density) *
+                           q->point_weight[p];
+    }
+    return GSN_OK;
+}
+
+int gsn_explicit_initialize_material(struct gsn_explicit *e)
+{
+    const unsigned char *k = e->point_material;
+    for (int p0 = 0, p1 = 0; p0 < e->main_point_count; p0 = p1) {
+        for (p1 = p0 + 1; p1 < e->main_point_count && k[p1] == k[p0]; ++p1)
+            ;
+        GSN_CALL(gsn_material_initialize(
+            e->materials->model[k[p0]], (size_t)(p1 - p0),
+            &e->stress[6 * (size_t)p0],
+            &e->state[(size_t)e->state_size * (size_t)p0]));
+    }
+    return GSN_OK;
+}
+
 int gsn_explicit_create(const struct gsn_model *m,
                         const struct gsn_quadrature *quadrature,
-                        const struct gsn_material_model *material,
+                        const struct gsn_material_set *materials,
                         struct gsn_constraints *constraints,
                         const struct gsn_case *c, double dt,
                         struct gsn_explicit **out)
@@ -350,22 +388,25 @@ int gsn_explicit_create(const struct gsn_model *m,
     int rc = GSN_OK;
     e->model = m;
     e->quadrature = quadrature;
-    e->material = material;
+    e->materials = materials;
+    e->material = materials->model[0];
     e->constraints = constraints;
     e->particle_count = quadrature->particle_count;
     e->point_count = quadrature->point_count;
     e->main_point_count = quadrature->main_point_count;
-    e->state_size = material->ops->state_size;
-    e->plastic_offset =
-        gsn_material_state_offset(material->ops, "equivalent_plastic_strain");
-    e->bulk_modulus = c->material.bulk_modulus;
-    e->shear_modulus = c->material.shear_modulus;
+    e->state_size = e->material->ops->state_size;
+    e->plastic_offset = gsn_material_state_offset(e->material->ops,
+                                                  "equivalent_plastic_strain");
+    for (int k = 0; k < materials->count; ++k) {
+        e->bulk_modulus[k] = materials->parameters[k]->bulk_modulus;
+        e->shear_modulus[k] = materials->parameters[k]->shear_modulus;
+    }
     e->dt = dt;
     e->damping_local = c->damping_local;
     e->small_strain = c->small_strain;
     e->held_axis = c->plane_strain_axis;
     memcpy(e->gravity, c->gravity, sizeof e->gravity);
-    e->load_factor = 1.0;
+    e->load_factor = e->pore_factor = 1.0;
     e->thread_count = omp_get_max_threads();
     size_t n3 = 3 * (size_t)e->particle_count;
     size_t points = (size_t)e->point_count;
@@ -396,6 +437,7 @@ int gsn_explicit_create(const struct gsn_model *m,
         {(void **)&e->reference_offset, n3, sizeof(double)},
         {(void **)&e->reference_gradient, 9 * main, sizeof(double)},
         {(void **)&e->point_dead, main, sizeof(int)},
+        {(void **)&e->point_material, main, sizeof(unsigned char)},
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         GSN_CALL_GOTO(
@@ -438,15 +480,13 @@ int gsn_explicit_create(const struct gsn_model *m,
                       rc, fail);
         gsn_explicit_set_constraints(e, constraints);
     }
-    for (size_t p = 0; p < main; ++p) {
-        e->point_mass[p] = c->material.density * quadrature->point_weight[p];
+    GSN_CALL_GOTO(build_domains(e), rc, fail);
+    GSN_CALL_GOTO(point_soil(e, c), rc, fail);
+    for (size_t p = 0; p < main; ++p)
         for (int a = 0; a < 9; ++a)
             e->reference_gradient[9 * p + a] = a % 4 == 0 ? 1.0 : 0.0;
-    }
     GSN_CALL_GOTO(build_mass(e), rc, fail);
-    GSN_CALL_GOTO(build_domains(e), rc, fail);
-    GSN_CALL_GOTO(gsn_material_initialize(material, main, e->stress, e->state),
-                  rc, fail);
+    GSN_CALL_GOTO(gsn_explicit_initialize_material(e), rc, fail);
     GSN_CALL_GOTO(gsn_explicit_refresh(e), rc, fail);
     *out = e;
     return GSN_OK;
@@ -496,6 +536,30 @@ void gsn_explicit_add_traction(struct gsn_explicit *e,
     store_previous_external(e);
 }
 
+void gsn_explicit_add_water_pressure(struct gsn_explicit *e,
+                                     const struct gsn_model *m,
+                                     const struct gsn_case *c)
+{
+    const struct gsn_quadrature *q = e->quadrature;
+    const struct gsn_shape_rows *values = &q->boundary_values;
+    if (!c->water.present)
+        return;
+    for (int b = 0; b < q->boundary_point_count; ++b) {
+        double u = gsn_water_pressure(c, &q->boundary_point_position[3 * b]);
+        if (!(u > 0.0))
+            continue;
+        const double *n = &m->facet_normal[3 * q->boundary_point_facet[b]];
+        double w = q->boundary_point_weight[b];
+        for (int k = values->offset[b]; k < values->offset[b + 1]; ++k)
+            for (int i = 0; i < 3; ++i)
+                e->f_ext_full[3 * values->index[k] + i] -=
+                    values->value[k] * u * n[i] * w;
+    }
+    for (int i = 0; i < 3 * e->particle_count; ++i)
+        e->f_ext[i] = e->load_factor * e->f_ext_full[i];
+    store_previous_external(e);
+}
+
 /* Small-strain elastic stress of the strain eps (Voigt, tensor shear). */
 static void elastic_stress(double bulk, double shear, const double eps[6],
                            double sigma[6])
@@ -518,6 +582,18 @@ static void point_piola(const double F[9], const double sigma[6], double w,
                 J * w *
                 (S[3 * i] * Finv[3 * j] + S[3 * i + 1] * Finv[3 * j + 1] +
                  S[3 * i + 2] * Finv[3 * j + 2]);
+}
+
+/* The P of main point p from its total stress sigma' - u I (explicit.h,
+ * pore_pressure). */
+static void total_piola(const struct gsn_explicit *e, int p, const double F[9],
+                        double w, double P[9])
+{
+    double sigma[6];
+    memcpy(sigma, &e->stress[6 * (size_t)p], sizeof sigma);
+    for (int a = 0; a < 3 && e->pore_pressure; ++a)
+        sigma[a] -= e->load_factor * e->pore_pressure[p];
+    point_piola(F, sigma, w, P);
 }
 
 static inline double identity_entry(int a)
@@ -745,9 +821,16 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
     distortion[5] = first_failed;
     if (failed)
         return GSN_ERR_NUMERICAL;
-    int rc =
-        gsn_stress_update(e->material, (size_t)(p1 - p0), G, &e->stress[6 * p0],
-                          &e->state[(size_t)e->state_size * p0], deps);
+    int rc = GSN_OK;
+    const unsigned char *kind = e->point_material;
+    for (int a = p0, z = p0; a < p1 && rc == GSN_OK; a = z) {
+        for (z = a + 1; z < p1 && kind[z] == kind[a]; ++z)
+            ;
+        rc = gsn_stress_update(e->materials->model[kind[a]], (size_t)(z - a),
+                               &G[9 * (a - p0)], &e->stress[6 * a],
+                               &e->state[(size_t)e->state_size * a],
+                               &deps[6 * (a - p0)]);
+    }
     if (rc != GSN_OK) {
         for (int p = p0; p < p1; ++p)
             e->point_failed[p] = 1;
@@ -765,6 +848,10 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
         double mean[6], F1[9];
         for (int a = 0; a < 6; ++a)
             mean[a] = 0.5 * (old[6 * b + a] + e->stress[6 * p + a]);
+        /* the total stress's work; u rises with the load factor */
+        for (int a = 0; a < 3 && e->pore_pressure; ++a)
+            mean[a] -= 0.5 * (e->pore_factor + e->load_factor) *
+                       e->pore_pressure[p];
         share[b] =
             e->plastic_offset < 0
                 ? 1.0
@@ -778,7 +865,7 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
         memcpy(&e->displacement_gradient[9 * p], &Hnew[9 * b],
                9 * sizeof(double));
         force_gradient(e, &Hnew[9 * b], F1);
-        point_piola(F1, &e->stress[6 * p], w[p], &e->piola[9 * p]);
+        total_piola(e, p, F1, w[p], &e->piola[9 * p]);
     }
     return GSN_OK;
 }
@@ -835,9 +922,9 @@ static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
     for (int a = 0; a < 9 && b->relative; ++a)
         dH[a] -= dH_L[a];
     gsn_matrix_sym_to_voigt(dH, deps);
-    elastic_stress(e->bulk_modulus,
-                   b->relative ? e->shear_modulus : share * e->shear_modulus,
-                   deps, rate);
+    double bulk = e->bulk_modulus[e->point_material[L]],
+           shear = e->shear_modulus[e->point_material[L]];
+    elastic_stress(bulk, b->relative ? shear : share * shear, deps, rate);
     double scale = b->relative ? share : 1.0;
     for (int a = 0; a < 6; ++a)
         sigma[a] = e->stress[6 * p + a] + scale * rate[a];
@@ -946,7 +1033,9 @@ static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
         double *HL = &H[9 * (L - p0)];
         row_gradient(b, gsn_point_blocks_main_row(b, k, L), u4, HL);
         gsn_matrix_sym_to_voigt(HL, eps);
-        elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
+        double bulk = e->bulk_modulus[e->point_material[L]],
+               shear = e->shear_modulus[e->point_material[L]];
+        elastic_stress(bulk, shear, eps, sigma);
         elastic_piola(sigma, w[L], &fold[9 * (L - p0)]);
         for (int s = 0; s < S; ++s) {
             int p = e->main_point_count + S * L + s;
@@ -958,7 +1047,7 @@ static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
             for (int a = 0; a < 9 && b->relative; ++a)
                 Hs[a] -= HL[a];
             gsn_matrix_sym_to_voigt(Hs, eps);
-            elastic_stress(e->bulk_modulus, e->shear_modulus, eps, sigma);
+            elastic_stress(bulk, shear, eps, sigma);
             subcell_scatter(b, r, sigma, w[p], &fold[9 * (L - p0)], f4);
         }
     }
@@ -1025,6 +1114,7 @@ int gsn_explicit_set_contact(struct gsn_explicit *e,
 int gsn_explicit_refresh(struct gsn_explicit *e)
 {
     const double *w = e->quadrature->point_weight;
+    e->pore_factor = e->load_factor;
     e->dead_count = 0;
     for (int p = 0; p < e->main_point_count; ++p)
         e->dead_count += e->point_dead[p];
@@ -1034,7 +1124,7 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
         if (p < e->main_point_count) {
             double F[9];
             force_gradient(e, &e->displacement_gradient[9 * p], F);
-            point_piola(F, &e->stress[6 * p], w[p], P);
+            total_piola(e, p, F, w[p], P);
         } else {
             gsn_voigt_to_matrix(&e->stress[6 * p], P);
             for (int a = 0; a < 9; ++a)
@@ -1301,6 +1391,7 @@ int gsn_explicit_step(struct gsn_explicit *e)
     e->internal_energy += step_loop(e, e->point_count, internal_work).internal;
     e->external_work += sums.external;
     e->damping_work += dissipated;
+    e->pore_factor = e->load_factor;
     e->step++;
     e->time = t1;
     phase_end(e, GSN_PHASE_UPDATES, &mark);
@@ -1756,6 +1847,7 @@ int gsn_explicit_carry_over(struct gsn_explicit *to,
                   rc, done);
     memset(to->displacement, 0, sizeof(double) * 3 * (size_t)n);
     to->load_factor = from->load_factor;
+    to->pore_factor = from->pore_factor;
     GSN_CALL_GOTO(gsn_explicit_set_point_mass(to, from->point_mass), rc, done);
     memcpy(to->stress, from->stress,
            sizeof(double) * 6 * (size_t)from->point_count);

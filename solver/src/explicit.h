@@ -74,11 +74,20 @@ enum gsn_explicit_phase {
 struct gsn_explicit {
     const struct gsn_model *model;             /* borrowed */
     const struct gsn_quadrature *quadrature;   /* borrowed */
-    const struct gsn_material_model *material; /* borrowed */
+    const struct gsn_material_set *materials;  /* borrowed */
+    const struct gsn_material_model *material; /* the first: the kind */
     struct gsn_constraints *constraints;       /* borrowed, may be NULL */
     int particle_count, point_count, main_point_count, state_size;
-    double bulk_modulus, shear_modulus; /* Pa, for stabilization points */
-    double dt;                          /* s */
+    unsigned char *point_material; /* main points: index into materials */
+    /* K and mu of each material (Pa), for the stabilization points */
+    double bulk_modulus[GSN_MAX_MATERIALS], shear_modulus[GSN_MAX_MATERIALS];
+    /* the water table's pore pressure u at the main points (Pa, compression
+     * positive; water:), NULL without: the force is that of the total
+     * stress sigma' - u I, the material's the effective sigma' (stress) */
+    double *pore_pressure;
+    double pore_factor; /* the load factor the present stress carries u with
+                           (u is a dead load: raised with the others) */
+    double dt; /* s */
     long step;
     double time; /* s: time_base + (step - step_base) dt */
     /* where the present step dt began (0, 0 until it changes: a reference
@@ -195,10 +204,12 @@ struct gsn_explicit {
 };
 
 /* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped
- * mass must be positive at every particle. */
+ * mass must be positive at every particle. A point carries the material of
+ * its particle (the one whose nodal domain holds it), the density of it
+ * (saturated below the water table) and the pore pressure where it is. */
 int gsn_explicit_create(const struct gsn_model *m,
                         const struct gsn_quadrature *quadrature,
-                        const struct gsn_material_model *material,
+                        const struct gsn_material_set *materials,
                         struct gsn_constraints *constraints,
                         const struct gsn_case *c, double dt,
                         struct gsn_explicit **out);
@@ -254,6 +265,17 @@ int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
  * sum_I Psi_I(X_J) d_I (n x 3, m): what frames show. */
 void gsn_explicit_particle_displacement(const struct gsn_explicit *e,
                                         double *out);
+
+/* The material state of every main point set from its stress (the
+ * materials' initialize: no history), e.g. after a geostatic stress. */
+int gsn_explicit_initialize_material(struct gsn_explicit *e);
+
+/* Adds the water's pressure on the boundary facets below the table of
+ * c (water:), t = -u n, to f_ext, with the facet quadrature as tractions
+ * (nothing without water). */
+void gsn_explicit_add_water_pressure(struct gsn_explicit *e,
+                                     const struct gsn_model *m,
+                                     const struct gsn_case *c);
 
 /* Adds a dead-load traction t (Pa, per reference area) on the boundary
  * facets of model surface `surface` to f_ext, integrated with the facet

@@ -88,6 +88,27 @@ struct gsn_material_model {
     void *context;
 };
 
+/* The soils of a case on its particles (issue 22): one model per material
+ * entry (material: one; materials: one per physical volume), all of one
+ * kind so that every point's state has one layout, and each particle's. */
+struct gsn_material_set {
+    int count;
+    struct gsn_material_model *model[GSN_MAX_MATERIALS];      /* owned */
+    const struct gsn_material *parameters[GSN_MAX_MATERIALS]; /* the case's */
+    int particle_count;
+    int *particle_material; /* index into model, per particle */
+};
+
+/* The set of case c on model m's particles: each particle's material from
+ * its physical volume (materials:), or 0 (material:). GSN_ERR_INPUT naming
+ * the volume when a particle's volume has no material. */
+struct gsn_model;
+int gsn_material_set_create(const struct gsn_case *c, const struct gsn_model *m,
+                            struct gsn_material_set **out);
+
+/* Frees and nulls the handle; NULL-safe. */
+void gsn_material_set_destroy(struct gsn_material_set **set);
+
 /* The table of a registered model, or NULL. */
 const struct gsn_material_ops *gsn_material_find(const char *name);
 

@@ -4,6 +4,7 @@
 #include "material.h"
 
 #include "geoscni/error.h"
+#include "geoscni/model.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -129,4 +130,65 @@ int gsn_material_update(const struct gsn_material_model *model, size_t count,
     GSN_CALL(model->ops->update(model->context, count, strain_increment, stress,
                                 state));
     return GSN_OK;
+}
+
+int gsn_material_set_create(const struct gsn_case *c, const struct gsn_model *m,
+                            struct gsn_material_set **out)
+{
+    *out = NULL;
+    struct gsn_material_set *set = calloc(1, sizeof *set);
+    GSN_CHECK(set, GSN_ERR_MEMORY, "out of memory");
+    int rc = GSN_OK, n = m->particle_count;
+    set->particle_count = n;
+    set->particle_material = calloc((size_t)n + 1, sizeof(int));
+    GSN_CHECK_GOTO(set->particle_material, rc, GSN_ERR_MEMORY, fail,
+                   "cannot allocate %d particles' materials", n);
+    /* one kind for all: the one with damage and plasticity if any asks */
+    const char *kind = "elastic";
+    for (int k = 0; k < c->material_count; ++k)
+        if (strcmp(gsn_material_name_for_case(&c->materials[k]), "elastic"))
+            kind = gsn_material_name_for_case(&c->materials[k]);
+    for (int k = 0; k < c->material_count; ++k) {
+        set->parameters[k] = &c->materials[k];
+        GSN_CALL_GOTO(
+            gsn_material_model_create(kind, &c->materials[k], &set->model[k]),
+            rc, fail);
+        set->count = k + 1;
+    }
+    /* each volume's material, then each particle's */
+    int of_volume[256];
+    GSN_CHECK_GOTO(m->volume_count <= 256, rc, GSN_ERR_INPUT, fail,
+                   "%d physical volumes, at most 256", m->volume_count);
+    for (int v = 0; v < m->volume_count; ++v)
+        of_volume[v] = gsn_case_find_material(c, m->volume_name[v]);
+    for (int i = 0; i < n && c->materials_by_volume; ++i) {
+        int v = m->particle_volume[i];
+        GSN_CHECK_GOTO(v >= 0, rc, GSN_ERR_INPUT, fail,
+                       "%s: particle %d at (%g, %g, %g) lies in no physical "
+                       "volume, so 'materials' gives it no soil; run pre "
+                       "again (the model may be older than the case)",
+                       c->path, i, m->position[3 * i], m->position[3 * i + 1],
+                       m->position[3 * i + 2]);
+        GSN_CHECK_GOTO(of_volume[v] >= 0, rc, GSN_ERR_INPUT, fail,
+                       "%s: physical volume '%s' has no soil under "
+                       "'materials'; add it",
+                       c->path, m->volume_name[v]);
+        set->particle_material[i] = of_volume[v];
+    }
+    *out = set;
+    return GSN_OK;
+fail:
+    gsn_material_set_destroy(&set);
+    return rc;
+}
+
+void gsn_material_set_destroy(struct gsn_material_set **set)
+{
+    if (!set || !*set)
+        return;
+    for (int k = 0; k < (*set)->count; ++k)
+        gsn_material_model_destroy(&(*set)->model[k]);
+    free((*set)->particle_material);
+    free(*set);
+    *set = NULL;
 }

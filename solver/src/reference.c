@@ -31,7 +31,7 @@ const char *gsn_reference_reason_name(enum gsn_reference_reason reason)
 /* The shape functions, integration, constraints (displacements prescribed
  * from epoch on) and the loop at rest on the cells of model m. */
 static int build(const struct gsn_model *m, const struct gsn_case *c,
-                 const struct gsn_material_model *material,
+                 const struct gsn_material_set *materials,
                  const struct gsn_contact *contact, double dt, double epoch,
                  struct gsn_quadrature **quadrature,
                  struct gsn_constraints **constraints,
@@ -56,7 +56,7 @@ static int build(const struct gsn_model *m, const struct gsn_case *c,
     GSN_CALL(rc);
     gsn_constraints_set_epoch(*constraints, epoch);
     double t2 = omp_get_wtime();
-    GSN_CALL(gsn_explicit_create(m, *quadrature, material, *constraints, c, dt,
+    GSN_CALL(gsn_explicit_create(m, *quadrature, materials, *constraints, c, dt,
                                  loop));
     if (report) {
         report->seconds_kernels = seconds[0];
@@ -75,11 +75,12 @@ static int build(const struct gsn_model *m, const struct gsn_case *c,
     return GSN_OK;
 }
 
-/* The case's tractions on the boundary facets of m, into the loop's
- * external force. */
+/* The case's tractions and the water's pressure on the boundary facets of
+ * m, into the loop's external force. */
 static void add_tractions(struct gsn_explicit *e, const struct gsn_model *m,
                           const struct gsn_case *c)
 {
+    gsn_explicit_add_water_pressure(e, m, c);
     for (int b = 0; b < c->boundary_count; ++b)
         if (c->boundaries[b].has_traction[0])
             gsn_explicit_add_traction(
@@ -89,7 +90,7 @@ static void add_tractions(struct gsn_explicit *e, const struct gsn_model *m,
 
 int gsn_reference_create(const struct gsn_model *original,
                          const struct gsn_case *c,
-                         const struct gsn_material_model *material, double dt,
+                         const struct gsn_material_set *materials, double dt,
                          int threads, struct gsn_reference **out)
 {
     *out = NULL;
@@ -97,7 +98,7 @@ int gsn_reference_create(const struct gsn_model *original,
     GSN_CHECK(r, GSN_ERR_MEMORY, "out of memory");
     r->original = original;
     r->c = c;
-    r->material = material;
+    r->materials = materials;
     r->threads = threads;
     r->model = original;
     const struct gsn_body mesh = {original->tetrahedron_count,
@@ -108,7 +109,7 @@ int gsn_reference_create(const struct gsn_model *original,
     if (rc == GSN_OK)
         rc = gsn_contact_create(original, c, &r->contact);
     if (rc == GSN_OK)
-        rc = build(original, c, material, r->contact, dt, 0.0, &r->quadrature,
+        rc = build(original, c, materials, r->contact, dt, 0.0, &r->quadrature,
                    &r->constraints, &r->loop, NULL);
     if (rc != GSN_OK) {
         gsn_reference_destroy(&r);
@@ -246,7 +247,7 @@ static int rebuild(struct gsn_reference *r, const double *x,
     report->tetrahedra_only = options.tetrahedra_only;
     GSN_CALL_GOTO(rc, rc, fail);
     report->seconds_cells = omp_get_wtime() - t0;
-    GSN_CALL_GOTO(build(cells, r->c, r->material, r->contact, old->dt, time,
+    GSN_CALL_GOTO(build(cells, r->c, r->materials, r->contact, old->dt, time,
                         &quadrature, &constraints, &loop, report),
                   rc, fail);
     double t_state = omp_get_wtime();

@@ -71,10 +71,10 @@ struct gsn_reference_report {
 };
 
 struct gsn_reference {
-    const struct gsn_model *original;          /* model.h5 (borrowed) */
-    const struct gsn_case *c;                  /* borrowed */
-    const struct gsn_material_model *material; /* borrowed */
-    int threads;                               /* 0: OpenMP's default */
+    const struct gsn_model *original;         /* model.h5 (borrowed) */
+    const struct gsn_case *c;                 /* borrowed */
+    const struct gsn_material_set *materials; /* borrowed */
+    int threads;                              /* 0: OpenMP's default */
     struct gsn_body body;    /* the body's tetrahedra: the pre mesh's, moved
                                 with the particles, until some turn inside
                                 out and it is made again (gsn_body_remesh) */
@@ -110,7 +110,7 @@ struct gsn_reference {
  * change it before the first step). */
 int gsn_reference_create(const struct gsn_model *original,
                          const struct gsn_case *c,
-                         const struct gsn_material_model *material, double dt,
+                         const struct gsn_material_set *materials, double dt,
                          int threads, struct gsn_reference **out);
 
 /* Frees; NULL-safe, nulls the handle. */

@@ -16,6 +16,7 @@
 #include "geoscni/solver.h"
 #include "geoscni/tensor.h"
 #include "material.h"
+#include "overburden.h"
 #include "reference.h"
 
 #include <errno.h>
@@ -72,7 +73,7 @@ struct run {
     char history_path[GSN_PATH_SIZE];
     char case_name[GSN_PATH_SIZE];
     struct gsn_model model;
-    struct gsn_material_model *material;
+    struct gsn_material_set *materials;
     /* the discretization of the present reference configuration and its
      * loop (reference.h) */
     struct gsn_reference *reference;
@@ -1367,7 +1368,7 @@ fail:
 static void run_free(struct run *r)
 {
     gsn_reference_destroy(&r->reference);
-    gsn_material_model_destroy(&r->material);
+    gsn_material_set_destroy(&r->materials);
     gsn_model_free(&r->model);
     gsn_frame_free(&r->frame);
     for (int b = 0; b < GSN_MAX_BOUNDARIES; ++b)
@@ -1488,6 +1489,14 @@ static double body_height(const struct run *r, int with_gravity)
     return height;
 }
 
+static int any_damage(const struct gsn_case *c)
+{
+    int damage = 0;
+    for (int k = 0; k < c->material_count; ++k)
+        damage |= c->materials[k].has_damage;
+    return damage;
+}
+
 /* A warning for gravity or tractions applied at full value at t = 0, with
  * a ramp to suggest: SUDDEN_LOAD_PERIODS periods of the body's lowest mode,
  * taken as a layer of height H on a fixed base, 4 H / c_s (H the body's
@@ -1496,8 +1505,7 @@ static void warn_sudden_load(const struct run *r, int gravity, int traction)
 {
     const struct gsn_case *c = r->c;
     double height = body_height(r, gravity);
-    double period =
-        4.0 * height / sqrt(c->material.shear_modulus / c->material.density);
+    double period = 4.0 * height / gsn_case_slowest_wave(c, 1);
     double ramp = SUDDEN_LOAD_PERIODS * period;
     double unit = pow(10.0, floor(log10(ramp))); /* one significant digit up */
     ramp = ceil(ramp / unit) * unit;
@@ -1515,7 +1523,7 @@ static void warn_sudden_load(const struct run *r, int gravity, int traction)
             gravity && traction ? "gravity and tractions are"
             : gravity           ? "gravity is"
                                 : "tractions are",
-            c->material.has_damage
+            any_damage(c)
                 ? ", and damage, which counts every oscillation, grows"
                 : "",
             ramp, end, SUDDEN_LOAD_PERIODS, period, height);
@@ -1682,14 +1690,14 @@ static int run_setup(struct run *r)
     GSN_CALL(check_memory(r));
     r->frame_bytes = 320.0 * r->model.particle_count; /* 40 doubles each */
     GSN_CALL(build_boundary_sets(r));
-    GSN_CALL(gsn_material_model_create(gsn_material_name_for_case(&c->material),
-                                       &c->material, &r->material));
-    GSN_CALL(gsn_reference_create(&r->model, c, r->material, c->time_step,
+    GSN_CALL(gsn_material_set_create(c, &r->model, &r->materials));
+    GSN_CALL(gsn_reference_create(&r->model, c, r->materials, c->time_step,
                                   r->options->threads, &r->reference));
     GSN_CALL(setup_loads(r));
-    r->damage_offset = gsn_material_state_offset(r->material->ops, "damage");
-    r->plastic_offset = gsn_material_state_offset(r->material->ops,
-                                                  "equivalent_plastic_strain");
+    const struct gsn_material_ops *ops = r->materials->model[0]->ops;
+    r->damage_offset = gsn_material_state_offset(ops, "damage");
+    r->plastic_offset =
+        gsn_material_state_offset(ops, "equivalent_plastic_strain");
     GSN_CALL(gsn_frame_allocate(&r->frame, r->model.particle_count));
     GSN_CALL(choose_time_step(r));
     char method[64];
@@ -1797,15 +1805,12 @@ static int unbalanced_force(const struct run *r, double *work, double *residual)
     return GSN_OK;
 }
 
-static double along(const double direction[3], const double x[3])
-{
-    return direction[0] * x[0] + direction[1] * x[1] + direction[2] * x[2];
-}
-
-/* geostatic.k0: the stress of level ground set at every point before the
- * stage, sigma_v = rho |g| depth below the highest particle along gravity,
- * sigma_h = K0 sigma_v (compression negative), and the material state set
- * from it; the stage then starts with the dead loads at full value. */
+/* geostatic.k0: the stress of the soil's weight set at every point before
+ * the stage: sigma_v the weight of the column above (gsn_overburden:
+ * layers, the water table's saturated densities, slopes), the effective
+ * sigma'_v = sigma_v + u, sigma'_h = K0 sigma'_v (compression negative),
+ * and the material state set from it; the stage then starts with the dead
+ * loads at full value. */
 static int set_level_ground_stress(struct run *r)
 {
     const struct gsn_case *c = r->c;
@@ -1819,24 +1824,25 @@ static int set_level_ground_stress(struct run *r)
               "give gravity",
               c->path, c->geostatic_line);
     double down[3] = {c->gravity[0] / g, c->gravity[1] / g, c->gravity[2] / g};
-    double top = INFINITY;
-    for (int i = 0; i < r->model.particle_count; ++i)
-        top = fmin(top, along(down, &r->model.position[3 * (size_t)i]));
-    for (int p = 0; p < q->point_count; ++p) {
-        double depth =
-            fmax(0.0, along(down, &q->point_position[3 * (size_t)p]) - top);
-        double vertical = -c->material.density * g * depth;
-        double horizontal = c->geostatic_k0 * vertical;
-        /* horizontal (I - n n) + vertical n n, Voigt xx yy zz xy yz xz */
+    double *vertical = malloc(sizeof(double) * ((size_t)q->point_count + 1));
+    GSN_CHECK(vertical, GSN_ERR_MEMORY, "out of memory");
+    int rc = gsn_overburden(&r->model, c, q->point_count, q->point_position,
+                            vertical);
+    for (int p = 0; rc == GSN_OK && p < q->point_count; ++p) {
+        double v = vertical[p] +
+                   gsn_water_pressure(c, &q->point_position[3 * (size_t)p]);
+        double h = c->geostatic_k0 * v;
+        /* h (I - n n) + v n n, Voigt xx yy zz xy yz xz */
         static const int row[6] = {0, 1, 2, 0, 1, 0},
                          col[6] = {0, 1, 2, 1, 2, 2};
         for (int a = 0; a < 6; ++a)
             e->stress[6 * (size_t)p + a] =
-                (row[a] == col[a] ? horizontal : 0.0) +
-                (vertical - horizontal) * down[row[a]] * down[col[a]];
+                (row[a] == col[a] ? h : 0.0) +
+                (v - h) * down[row[a]] * down[col[a]];
     }
-    GSN_CALL(gsn_material_initialize(r->material, e->main_point_count,
-                                     e->stress, e->state));
+    free(vertical);
+    GSN_CALL(rc);
+    GSN_CALL(gsn_explicit_initialize_material(e));
     GSN_CALL(gsn_explicit_refresh(e));
     return GSN_OK;
 }
@@ -1896,9 +1902,7 @@ static int geostatic_stage(struct run *r)
     struct gsn_explicit *e = r->reference->loop;
     double started = now_seconds(), last_print = started;
     double extent = body_height(r, 0); /* the largest along the axes */
-    const struct gsn_material *m = &c->material;
-    double wave =
-        sqrt((m->bulk_modulus + 4.0 / 3.0 * m->shear_modulus) / m->density);
+    double wave = gsn_case_slowest_wave(c, 0);
     long transit = (long)ceil(extent / (wave * e->dt));
     long ramp = 4 * transit < 50 ? 50 : 4 * transit;
     long window = MECHANISM_WINDOW_TRANSITS * transit;

@@ -8,6 +8,16 @@
 
 #include <string.h>
 
+/* The same soil in two cases: every field but the lines it was read from
+ * (the resolved YAML puts the keys on other lines). */
+static int same_soil(const struct gsn_material *a, const struct gsn_material *b)
+{
+    struct gsn_material x = *a, y = *b;
+    memset(&x.line, 0, sizeof x.line);
+    memset(&y.line, 0, sizeof y.line);
+    return memcmp(&x, &y, sizeof x) == 0;
+}
+
 static void check_valid(const struct gsn_case *c)
 {
     TEST_TRUE(strstr(c->geometry, "/tests/foundation/cases/cube.geo") != NULL);
@@ -99,8 +109,7 @@ static void test_mohr_coulomb(void)
     TEST_NEAR(m->dp_R, R, 0.0);
     TEST_NEAR(m->dp_dilatancy, beta, 0.0);
     round_trip(&from_file, &again);
-    TEST_TRUE(memcmp(&from_file.material, &again.material,
-                     sizeof again.material) == 0);
+    TEST_TRUE(same_soil(&from_file.material, &again.material));
 
     /* Strength reduction (geoscni fos): c and tan(phi) over F, psi kept
      * below the reduced phi, the cone refitted; F = 1 gives the case's
@@ -138,7 +147,7 @@ int main(void)
     /* Round trip through the resolved YAML. */
     round_trip(&c, &again);
     check_valid(&again);
-    TEST_TRUE(memcmp(&c.material, &again.material, sizeof c.material) == 0);
+    TEST_TRUE(same_soil(&c.material, &again.material));
 
     /* Defaults of the optional keys. */
     TEST_INT(gsn_case_load("cases/minimal.yaml", &c), GSN_OK);

@@ -88,7 +88,8 @@ static inline int fixture_solve_box(const struct gsn_case *c, char *folder,
 struct fixture_solver {
     struct gsn_model model;
     struct gsn_quadrature *quadrature;
-    struct gsn_material_model *material;
+    struct gsn_material_set *materials;
+    struct gsn_material_model *material; /* the first of materials */
     struct gsn_constraints *constraints;
     struct gsn_explicit *loop;
 };
@@ -97,7 +98,8 @@ static inline void fixture_solver_destroy(struct fixture_solver *s)
 {
     gsn_explicit_destroy(&s->loop);
     gsn_constraints_destroy(&s->constraints);
-    gsn_material_model_destroy(&s->material);
+    gsn_material_set_destroy(&s->materials);
+    s->material = NULL;
     gsn_quadrature_destroy(&s->quadrature);
     gsn_model_free(&s->model);
 }
@@ -150,14 +152,15 @@ static inline int fixture_solver_from_cells(const struct gsn_case *c, double dt,
         rc = gsn_quadrature_create(&s->model, &kernel, cells, cell_count,
                                    &s->quadrature);
     if (rc == GSN_OK)
-        rc = gsn_material_model_create(gsn_material_name_for_case(&c->material),
-                                       &c->material, &s->material);
+        rc = gsn_material_set_create(c, &s->model, &s->materials);
+    if (rc == GSN_OK)
+        s->material = s->materials->model[0];
     if (rc == GSN_OK && c->boundary_count > 0 && !s->constraints)
         rc = gsn_constraints_create(&s->model, c,
                                     &s->quadrature->particle_values, NULL,
                                     &s->constraints);
     if (rc == GSN_OK)
-        rc = gsn_explicit_create(&s->model, s->quadrature, s->material,
+        rc = gsn_explicit_create(&s->model, s->quadrature, s->materials,
                                  s->constraints, c, dt, &s->loop);
     if (rc != GSN_OK) {
         gsn_error_print(stderr);

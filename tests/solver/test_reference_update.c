@@ -40,7 +40,8 @@ static const double LO[3] = {0, 0, 0}, HI[3] = {1, 1, 1};
 struct block {
     struct gsn_case c;
     struct gsn_model model;
-    struct gsn_material_model *material;
+    struct gsn_material_set *materials;
+    struct gsn_material_model *material; /* the first of materials */
     struct gsn_reference *reference;
 };
 
@@ -50,11 +51,9 @@ static void block_create(const char *path, struct block *b)
     TEST_INT(gsn_case_load(path, &b->c), GSN_OK);
     TEST_INT(fixture_box(COUNT, LO, HI, JITTER, 1, &b->model), GSN_OK);
     TEST_TRUE(b->model.tetrahedron_count > 0);
-    TEST_INT(
-        gsn_material_model_create(gsn_material_name_for_case(&b->c.material),
-                                  &b->c.material, &b->material),
-        GSN_OK);
-    int rc = gsn_reference_create(&b->model, &b->c, b->material, 1e-4, 0,
+    TEST_INT(gsn_material_set_create(&b->c, &b->model, &b->materials), GSN_OK);
+    b->material = b->materials->model[0];
+    int rc = gsn_reference_create(&b->model, &b->c, b->materials, 1e-4, 0,
                                   &b->reference);
     if (rc != GSN_OK)
         gsn_error_print(stderr);
@@ -64,7 +63,7 @@ static void block_create(const char *path, struct block *b)
 static void block_destroy(struct block *b)
 {
     gsn_reference_destroy(&b->reference);
-    gsn_material_model_destroy(&b->material);
+    gsn_material_set_destroy(&b->materials);
     gsn_model_free(&b->model);
 }
 
@@ -317,13 +316,11 @@ static void test_failed_point_energy(enum gsn_stabilization stabilization)
     TEST_INT(gsn_case_load("cases/block_paper.yaml", &b.c), GSN_OK);
     b.c.stabilization = stabilization;
     TEST_INT(fixture_box(COUNT, LO, HI, JITTER, 1, &b.model), GSN_OK);
-    TEST_INT(
-        gsn_material_model_create(gsn_material_name_for_case(&b.c.material),
-                                  &b.c.material, &b.material),
-        GSN_OK);
-    TEST_INT(
-        gsn_reference_create(&b.model, &b.c, b.material, 1e-4, 0, &b.reference),
-        GSN_OK);
+    TEST_INT(gsn_material_set_create(&b.c, &b.model, &b.materials), GSN_OK);
+    b.material = b.materials->model[0];
+    TEST_INT(gsn_reference_create(&b.model, &b.c, b.materials, 1e-4, 0,
+                                  &b.reference),
+             GSN_OK);
     struct gsn_explicit *e = b.reference->loop;
     TEST_TRUE(e->point_count > e->main_point_count && e->allow_failure);
     /* the middle particle pushed through its neighbours */

@@ -11,6 +11,9 @@ extern "C" {
 #endif
 
 enum { GSN_PATH_SIZE = 4096, GSN_NAME_SIZE = 64, GSN_MAX_BOUNDARIES = 32 };
+/* Entries of materials: (one soil per gmsh physical volume) and points of
+ * water.table. */
+enum { GSN_MAX_MATERIALS = 16, GSN_MAX_WATER_POINTS = 64 };
 /* Entries of output.times; regular frames take output.every. */
 enum { GSN_MAX_OUTPUT_TIMES = 1000 };
 
@@ -129,6 +132,31 @@ struct gsn_material {
     double friction_angle; /* phi, degrees */
     double dilation_angle; /* psi, degrees */
     enum gsn_dp_fit dp_fit;
+    /* rho_sat below the water table (water:), kg/m^3; = density if not
+     * given */
+    double saturated_density;
+    /* materials: the gmsh physical volume the soil fills; "" for the one
+     * soil of material: */
+    char volume[GSN_NAME_SIZE];
+    /* lines in the case file (0: not given), for messages: the entry and
+     * some keys */
+    struct {
+        int entry, density, bulk_modulus, shear_modulus, R;
+    } line;
+};
+
+/* A static water table (water:; docs/material.md, "Water"): hydrostatic
+ * pore pressure u = gamma_w (table height - height) below it, heights along
+ * -gravity; the material sees the effective stress sigma' = sigma + u I. */
+struct gsn_water {
+    int present;
+    double unit_weight; /* gamma_w, N/m^3 */
+    /* 1: a level, the table at height points[0][0]; >= 2: a section's line,
+     * points (x, y, z) in order along one horizontal direction, linear
+     * between them, level beyond the ends, the same across the section */
+    int point_count;
+    double points[GSN_MAX_WATER_POINTS][3];
+    int line; /* of the key water */
 };
 
 /* Strength reduction (geoscni fos; docs/fos.md): the material with c and
@@ -163,12 +191,16 @@ struct gsn_case {
     int gauss_points; /* per direction, GAUSS only */
     enum gsn_stabilization stabilization;
     double stabilization_coefficient; /* MSCNI weight of the sub-cells */
-    struct gsn_material material;
-    /* lines of the material's keys in the case file (0: not given), for
-     * messages */
-    struct {
-        int density, bulk_modulus, shear_modulus, R;
-    } material_line;
+    /* The soils: material: gives one for the whole body (material_count 1,
+     * materials_by_volume 0); materials: one per gmsh physical volume, in
+     * the case file's order. material is materials[0]. */
+    int material_count;
+    int materials_by_volume;
+    union {
+        struct gsn_material material;
+        struct gsn_material materials[GSN_MAX_MATERIALS];
+    };
+    struct gsn_water water;
     double gravity[3]; /* m/s^2 */
     int boundary_count;
     struct gsn_boundary boundaries[GSN_MAX_BOUNDARIES];
@@ -245,6 +277,22 @@ int gsn_case_pre_signature(const struct gsn_case *c, char *out, size_t size);
  * them (the stable step scales with the spacing); the refinements' zones
  * (boxes, distances, widths) are the geometry's and stay. */
 void gsn_case_scale_spacing(struct gsn_case *c, double factor);
+
+/* The water table's pore pressure u at position x (Pa, compression
+ * positive; 0 above the table or without water:), and the table's height
+ * above x's place and x's own height (m, along -gravity). */
+double gsn_water_pressure(const struct gsn_case *c, const double x[3]);
+double gsn_water_table_height(const struct gsn_case *c, const double x[3]);
+double gsn_height(const struct gsn_case *c, const double x[3]);
+
+/* The slowest wave speed over the case's materials (m/s): shear waves
+ * sqrt(mu / rho) (shear 1) or P waves sqrt((K + 4 mu / 3) / rho) (0);
+ * the period and transit times of the body's response. */
+double gsn_case_slowest_wave(const struct gsn_case *c, int shear);
+
+/* Index into c->materials of the material of a gmsh physical volume, or -1
+ * (material: gives every volume its one material: 0). */
+int gsn_case_find_material(const struct gsn_case *c, const char *volume);
 
 /* Writes a warning for each value that is legal but implausible for soil,
  * with the unit mistake it likely is (a density of 1.88, t/m^3 for kg/m^3;

@@ -35,6 +35,15 @@ struct gsn_model {
     int *surface_tag;     /* gmsh physical tag */
     double *surface_area; /* m^2, as gmsh measures it */
 
+    /* gmsh's physical volumes (materials: gives each its soil) */
+    int volume_count;
+    char (*volume_name)[GSN_H5_STRING_SIZE];
+    int *volume_tag;         /* gmsh physical tag */
+    int *particle_volume;    /* particle_count: index into the volumes, -1
+                                in none; a particle on an interface takes
+                                the volume with most of its tetrahedra */
+    int *tetrahedron_volume; /* tetrahedron_count: index, -1 in none */
+
     int tetrahedron_count;
     int *tetrahedra; /* tetrahedron_count x 4 particle indices */
     /* tetrahedron_count x 4: what the face opposite vertex k of each
@@ -52,6 +61,15 @@ int gsn_model_allocate(struct gsn_model *m, int particle_count,
                        int particle_surface_entries, int facet_count,
                        int facet_point_count, int surface_count,
                        int tetrahedron_count);
+
+/* Allocates the names and tags of volume_count physical volumes (the
+ * particles' and tetrahedra's indices come with gsn_model_allocate, -1). */
+int gsn_model_allocate_volumes(struct gsn_model *m, int volume_count);
+
+/* Copies the physical volumes (names, tags, the particles' and the
+ * tetrahedra's indices) of from into to, which has the same particles and
+ * tetrahedra. */
+int gsn_model_copy_volumes(const struct gsn_model *from, struct gsn_model *to);
 
 /* Frees every array and zeroes the struct; accepts a zeroed struct. */
 void gsn_model_free(struct gsn_model *m);
@@ -72,6 +90,9 @@ int gsn_model_sort_spatially(struct gsn_model *m);
 /* 1 if the particle carries the surface's tag. */
 int gsn_model_particle_on_surface(const struct gsn_model *m, int particle,
                                   int surface);
+
+/* Index of a physical volume by name, or -1. */
+int gsn_model_find_volume(const struct gsn_model *m, const char *name);
 
 /* Index of a surface by name, or -1. */
 int gsn_model_find_surface(const struct gsn_model *m, const char *name);

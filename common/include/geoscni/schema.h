@@ -14,7 +14,9 @@ extern "C" {
  * every dataset carries the CRC-32 of its data (attribute 'crc32') and the
  * metadata the 1.8 format's checksums (issue 19): no damaged file is read
  * unnoticed */
-#define GSN_SCHEMA_VERSION 3
+/* 4 (2026-12-03): model.h5 holds the physical volumes (volumes/, the
+ * particles' and tetrahedra's; issue 22) */
+#define GSN_SCHEMA_VERSION 4
 #define GSN_FILE_KIND_MODEL "model"
 #define GSN_FILE_KIND_RESULTS "results"
 
@@ -84,7 +86,17 @@ struct gsn_dataset_info {
       "pieces and the cells of the pictures")                                  \
     X(GSN_MODEL_TETRAHEDRON_FACE, "mesh/tetrahedron_face", GSN_H5_INT, 4, "1", \
       "what the face opposite vertex k of each tetrahedron lies on: a "        \
-      "surface index, -1 inside the body, -2 boundary without a surface")
+      "surface index, -1 inside the body, -2 boundary without a surface")      \
+    X(GSN_MODEL_VOLUME_NAME, "volumes/name", GSN_H5_STRING, 1, "1",            \
+      "gmsh physical volume names")                                            \
+    X(GSN_MODEL_VOLUME_TAG, "volumes/tag", GSN_H5_INT, 1, "1",                 \
+      "gmsh physical group tag of each volume")                                \
+    X(GSN_MODEL_PARTICLE_VOLUME, "particles/physical_volume", GSN_H5_INT, 1,   \
+      "1",                                                                     \
+      "index into volumes/ of each particle's volume (on an interface: the "   \
+      "one with most of its tetrahedra), -1 in none")                          \
+    X(GSN_MODEL_TETRAHEDRON_VOLUME, "mesh/tetrahedron_volume", GSN_H5_INT, 1,  \
+      "1", "index into volumes/ of each tetrahedron's volume, -1 in none")
 
 /* One frame of results.h5: a group GSN_FRAME_GROUP_FORMAT with attributes
  * "time" (s) and "step", holding these datasets (one row per particle). */
