@@ -20,6 +20,10 @@ struct arguments {
     double tolerance;     /* relative; 0: the default */
     double finest;        /* m; 0: the case's particles.spacing */
     const char *quantity; /* NULL: the default */
+    /* ground */
+    const char *layers; /* --layers */
+    double base;        /* --base, m */
+    int has_base, every;
 };
 
 /* Prepares and locks an output folder for this process. */
@@ -45,5 +49,8 @@ int command_converge(const struct arguments *a);
 
 /* geoscni fos (app/fos.c) */
 int command_fos(const struct arguments *a);
+
+/* geoscni ground (app/ground.c) */
+int command_ground(const struct arguments *a);
 
 #endif

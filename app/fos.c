@@ -62,9 +62,11 @@ static int fos_check_case(const struct gsn_case *c)
               "(the factor of safety is that of the body under its own "
               "weight)",
               c->path);
+    int reducible = 0;
     for (int k = 0; k < c->material_count; ++k) {
         const struct gsn_material *m = &c->materials[k];
-        GSN_CHECK(m->has_plasticity && m->dp_from_mohr_coulomb, GSN_ERR_INPUT,
+        reducible |= m->has_plasticity;
+        GSN_CHECK(!m->has_plasticity || m->dp_from_mohr_coulomb, GSN_ERR_INPUT,
                   "%s:%d: fos reduces c and tan(phi): give the strength%s%s "
                   "as 'drucker_prager: {cohesion: PA, friction_angle: DEG, "
                   "dilation_angle: DEG}' (docs/material.md, \"In engineers' "
@@ -72,6 +74,12 @@ static int fos_check_case(const struct gsn_case *c)
                   c->path, m->line.entry, m->volume[0] ? " of " : "",
                   m->volume);
     }
+    GSN_CHECK(reducible, GSN_ERR_INPUT,
+              "%s: fos reduces c and tan(phi), and no soil has them: give "
+              "one 'drucker_prager: {cohesion: PA, friction_angle: DEG, "
+              "dilation_angle: DEG}' (an elastic one, bedrock, is kept as it "
+              "is)",
+              c->path);
     for (int b = 0; b < c->boundary_count; ++b)
         GSN_CHECK(!c->boundaries[b].rigid, GSN_ERR_INPUT,
                   "%s:%d: fos brings the body to rest under its dead loads "
@@ -370,6 +378,13 @@ int command_fos(const struct arguments *a)
         int damage = 0;
         for (int k = 0; k < c->material_count; ++k)
             damage |= c->materials[k].has_damage;
+        for (int k = 0; k < c->material_count; ++k)
+            if (!c->materials[k].has_plasticity)
+                printf("fos: note: %s%s has no strength given: it stays "
+                       "elastic, not reduced\n",
+                       c->materials[k].volume[0] ? c->materials[k].volume
+                                                 : "the material",
+                       "");
         if (damage)
             printf("fos: note: the damage of the case is left out: the "
                    "factor reduces the peak strength c, phi\n");

@@ -37,6 +37,9 @@ enum option_bit {
     OPTION_QUANTITY = 1 << 11,
     OPTION_TOLERANCE = 1 << 12,
     OPTION_FINEST = 1 << 13,
+    OPTION_LAYERS = 1 << 14,
+    OPTION_BASE = 1 << 15,
+    OPTION_EVERY = 1 << 16,
     OPTION_GENERAL = OPTION_HELP | OPTION_QUIET | OPTION_VERBOSE /* every
                                                                    command's */
 };
@@ -60,6 +63,9 @@ static const struct option {
     {NULL, "--quantity", OPTION_QUANTITY, "a quantity"},
     {NULL, "--tol", OPTION_TOLERANCE, "a fraction"},
     {NULL, "--finest", OPTION_FINEST, "a spacing in m"},
+    {NULL, "--layers", OPTION_LAYERS, "a list of layers"},
+    {NULL, "--base", OPTION_BASE, "an elevation in m"},
+    {NULL, "--every", OPTION_EVERY, "a number"},
 };
 enum { OPTION_COUNT = sizeof command_options / sizeof command_options[0] };
 
@@ -546,6 +552,22 @@ static const struct command commands[] = {
      command_fos, 1, 1, "file",
      OPTION_OUTPUT | OPTION_FORCE | OPTION_NO_PICTURES | OPTION_THREADS |
          OPTION_TOLERANCE | OPTION_RERUN},
+    {"ground",
+     "geoscni ground GRID.xyz --layers NAME:T,...,NAME --base Z [-o SITE.geo] "
+     "[--every N]",
+     "a gmsh geometry of layered ground from survey data: a grid of "
+     "elevations (lines 'x y z'), the layers under it and a level base; "
+     "named surfaces (ground, base, xmin, xmax, ymin, ymax) and a volume per "
+     "layer (docs/site.md)",
+     "  --layers LIST    the layers top down, comma-separated: NAME:T (T m "
+     "thick under the one above), NAME:FILE.xyz (down to the elevations of "
+     "that grid), and last a NAME alone (down to the base)\n"
+     "  --base Z         the elevation of the level bottom, m\n"
+     "  -o, --output F   the .geo to write (default: GRID.geo)\n"
+     "  --every N        every N-th grid line only (a coarser ground: the "
+     "grid's spacing bounds the particle spacing near it)\n",
+     command_ground, 1, 1, "file",
+     OPTION_OUTPUT | OPTION_LAYERS | OPTION_BASE | OPTION_EVERY},
     {"check", "geoscni check CASE.yaml [CASE2.yaml ...]",
      "check case files (also against their geometries, meshing their "
      "surfaces) and print their resolved parameters, the particle estimate "
@@ -696,6 +718,21 @@ static int parse_arguments(const struct command *command, int argc, char **argv,
             a->no_pictures = 1;
         } else if (o->bit == OPTION_QUANTITY) {
             a->quantity = value;
+        } else if (o->bit == OPTION_LAYERS) {
+            a->layers = value;
+        } else if (o->bit == OPTION_BASE || o->bit == OPTION_EVERY) {
+            char *end = NULL;
+            double number = strtod(value, &end);
+            if (end == value || *end != '\0' || !isfinite(number) ||
+                (o->bit == OPTION_EVERY &&
+                 (number < 1 || number > 1e6 || number != floor(number))))
+                return usage_error(command, "bad value '%s' of %s", value,
+                                   o->long_name);
+            if (o->bit == OPTION_BASE) {
+                a->base = number;
+                a->has_base = 1;
+            } else
+                a->every = (int)number;
         } else if (o->bit & (OPTION_LEVELS | OPTION_RATIO | OPTION_TOLERANCE |
                              OPTION_FINEST)) {
             char *end = NULL;

@@ -1989,6 +1989,8 @@ void gsn_material_reduce_strength(const struct gsn_material *m, double factor,
     const double degree = acos(-1.0) / 180.0;
     *reduced = *m;
     reduced->has_damage = 0;
+    if (!m->has_plasticity)
+        return; /* elastic (bedrock): no strength to reduce */
     reduced->cohesion = m->cohesion / factor;
     reduced->friction_angle =
         atan(tan(m->friction_angle * degree) / factor) / degree;

@@ -37,9 +37,12 @@ struct post_mesh {
     int tetrahedron_count;
     int *tetrahedra;  /* tetrahedron_count x 4 */
     double bounds[6]; /* of the reference positions, m */
-    /* the site (post_site_fields): each point's physical volume (its
-     * index) and pore pressure (Pa) at X; NULL without volumes, water */
-    double *volume, *pore_pressure;
+    /* the site (post_site_fields): each tetrahedron's physical volume
+     * (its index) with the volumes' names, and each point's pore pressure
+     * (Pa) at X; NULL without layers, water */
+    int *volume, volume_count;
+    char (*volume_name)[GSN_H5_STRING_SIZE];
+    double *pore_pressure;
 };
 
 static void post_mesh_free(struct post_mesh *mesh)
@@ -47,6 +50,7 @@ static void post_mesh_free(struct post_mesh *mesh)
     free(mesh->reference);
     free(mesh->tetrahedra);
     free(mesh->volume);
+    free(mesh->volume_name);
     free(mesh->pore_pressure);
     memset(mesh, 0, sizeof *mesh);
 }
@@ -435,7 +439,7 @@ static int post_frame_pictures(const struct gsn_vtk_grid *grid,
     if (index != count - 1)
         return GSN_OK;
     const struct {
-        const double *values;
+        const void *values;
         enum gsn_vtk_picture picture;
         const char *file, *what;
     } site[] = {{mesh->volume, GSN_VTK_PICTURE_LAYERS, "layers",
@@ -829,10 +833,10 @@ static void post_note_incomplete(hid_t results, const char *path,
                         : "");
 }
 
-/* The site's fields at the mesh's points (mirrored ones too): the physical
- * volume of each particle (model.h5, when it has layers: two volumes or
- * more) and the water
- * table's pore pressure at its reference position (the case's water:). */
+/* The site's fields (mirrored ones too): the physical volume of each
+ * tetrahedron with the volumes' names (model.h5, when it has layers: two
+ * volumes or more) and the water table's pore pressure at each point's
+ * reference position (the case's water:). */
 static int post_site_fields(const char *model_path, const struct gsn_case *c,
                             int have_case, const struct post_mirror *mirror,
                             struct post_mesh *mesh)
@@ -840,28 +844,37 @@ static int post_site_fields(const char *model_path, const struct gsn_case *c,
     const struct gsn_dataset_info *names =
         &gsn_model_datasets[GSN_MODEL_VOLUME_NAME];
     const struct gsn_dataset_info *owner =
-        &gsn_model_datasets[GSN_MODEL_PARTICLE_VOLUME];
+        &gsn_model_datasets[GSN_MODEL_TETRAHEDRON_VOLUME];
     int n = mesh->point_count, rc = GSN_OK;
-    int half = mirror->active ? mirror->half_count : n;
+    size_t t = (size_t)mesh->tetrahedron_count / (mirror->active ? 2 : 1);
     size_t volumes = 0, rows = 0;
-    int *index = NULL;
     hid_t file = H5I_INVALID_HID;
     GSN_CALL(gsn_h5_open(model_path, GSN_FILE_KIND_MODEL, 0, &file));
     GSN_CALL_GOTO(gsn_h5_rows(file, names, &volumes), rc, done);
     if (volumes > 1) {
         GSN_CALL_GOTO(gsn_h5_rows(file, owner, &rows), rc, done);
-        GSN_CHECK_GOTO(rows == (size_t)half, rc, GSN_ERR_INPUT, done,
-                       "%s: %s has %zu rows for %d particles; run pre again",
-                       model_path, owner->path, rows, half);
-        index = malloc(sizeof(int) * (rows + 1));
-        mesh->volume = malloc(sizeof(double) * ((size_t)n + 1));
-        GSN_CHECK_GOTO(index && mesh->volume, rc, GSN_ERR_MEMORY, done,
-                       "out of memory");
-        GSN_CALL_GOTO(gsn_h5_read(file, owner, rows, index), rc, done);
-        for (int i = 0; i < half; ++i) {
-            mesh->volume[i] = index[i];
+        GSN_CHECK_GOTO(rows == t && volumes < 256, rc, GSN_ERR_INPUT, done,
+                       "%s: %s has %zu rows for %zu tetrahedra; run pre "
+                       "again",
+                       model_path, owner->path, rows, t);
+        mesh->volume = malloc(sizeof(int) * (2 * t + 1));
+        mesh->volume_name = calloc(volumes, sizeof *mesh->volume_name);
+        GSN_CHECK_GOTO(mesh->volume && mesh->volume_name, rc, GSN_ERR_MEMORY,
+                       done, "out of memory");
+        GSN_CALL_GOTO(gsn_h5_read(file, owner, rows, mesh->volume), rc, done);
+        GSN_CALL_GOTO(gsn_h5_read(file, names, volumes, mesh->volume_name), rc,
+                      done);
+        mesh->volume_count = (int)volumes;
+        for (size_t v = 0; v < volumes; ++v)
+            mesh->volume_name[v][GSN_H5_STRING_SIZE - 1] = '\0';
+        for (size_t e = 0; e < t; ++e) {
+            GSN_CHECK_GOTO(mesh->volume[e] >= -1 &&
+                               mesh->volume[e] < (int)volumes,
+                           rc, GSN_ERR_INPUT, done,
+                           "%s: %s[%zu] = %d is out of range; run pre again",
+                           model_path, owner->path, e, mesh->volume[e]);
             if (mirror->active)
-                mesh->volume[mirror->image[i]] = index[i];
+                mesh->volume[t + e] = mesh->volume[e];
         }
     }
     if (have_case && c->water.present) {
@@ -873,7 +886,6 @@ static int post_site_fields(const char *model_path, const struct gsn_case *c,
                 gsn_water_pressure(c, &mesh->reference[3 * (size_t)i]);
     }
 done:
-    free(index);
     gsn_h5_close(&file);
     return rc;
 }
@@ -885,8 +897,13 @@ static int post_grid(const struct post_mesh *mesh,
     GSN_CALL(gsn_vtk_grid_create(mesh->point_count, mesh->reference,
                                  mesh->tetrahedron_count, mesh->tetrahedra,
                                  frame, grid));
-    if (mesh->volume)
-        GSN_CALL(gsn_vtk_grid_add_point_field(*grid, "volume", mesh->volume));
+    if (mesh->volume) {
+        const char *names[256];
+        for (int v = 0; v < mesh->volume_count; ++v)
+            names[v] = mesh->volume_name[v];
+        GSN_CALL(gsn_vtk_grid_add_cell_categories(*grid, "volume", mesh->volume,
+                                                  mesh->volume_count, names));
+    }
     if (mesh->pore_pressure)
         GSN_CALL(gsn_vtk_grid_add_point_field(*grid, "pore_pressure",
                                               mesh->pore_pressure));

@@ -13,6 +13,7 @@
 #include <vtkAxis.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkChartLegend.h>
 #include <vtkChartXY.h>
@@ -24,6 +25,7 @@
 #include <vtkFeatureEdges.h>
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
@@ -42,11 +44,13 @@
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
 #include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
 #include <vtkTable.h>
 #include <vtkTableBasedClipDataSet.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkVariant.h>
 #include <vtkVersion.h>
 #include <vtkWindowToImageFilter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
@@ -148,40 +152,68 @@ struct picture_spec {
     int component; // column of the field; -1: the length of its row
     double scale;  // shown value = scale * field value
     bool clip;
+    bool categories; // a cell array of categories (the layers)
 };
 
 picture_spec picture_spec_of(int picture)
 {
     switch (picture) {
     case GSN_VTK_PICTURE_CLIP_UX:
-        return {"u_x [m]", GSN_FRAME_DISPLACEMENT, nullptr, 0, 1.0, true};
+        return {"u_x [m]", GSN_FRAME_DISPLACEMENT, nullptr, 0, 1.0, true,
+                false};
     case GSN_VTK_PICTURE_CLIP_UY:
-        return {"u_y [m]", GSN_FRAME_DISPLACEMENT, nullptr, 1, 1.0, true};
+        return {"u_y [m]", GSN_FRAME_DISPLACEMENT, nullptr, 1, 1.0, true,
+                false};
     case GSN_VTK_PICTURE_CLIP_UZ:
-        return {"u_z [m]", GSN_FRAME_DISPLACEMENT, nullptr, 2, 1.0, true};
+        return {"u_z [m]", GSN_FRAME_DISPLACEMENT, nullptr, 2, 1.0, true,
+                false};
     case GSN_VTK_PICTURE_CLIP_EQUIVALENT_STRESS:
         return {"equivalent stress [kPa]",
                 GSN_FRAME_EQUIVALENT_STRESS,
                 nullptr,
                 0,
                 1e-3,
-                true};
+                true,
+                false};
     case GSN_VTK_PICTURE_CLIP_DISPLACEMENT:
-        return {"|u| [m]", GSN_FRAME_DISPLACEMENT, nullptr, -1, 1.0, true};
+        return {"|u| [m]", GSN_FRAME_DISPLACEMENT, nullptr, -1, 1.0, true,
+                false};
     case GSN_VTK_PICTURE_CLIP_EQUIVALENT_PLASTIC_STRAIN:
         return {"equivalent plastic strain [-]",
                 GSN_FRAME_EQUIVALENT_PLASTIC_STRAIN,
                 nullptr,
                 0,
                 1.0,
-                true};
+                true,
+                false};
     case GSN_VTK_PICTURE_LAYERS:
-        return {"volume (layer) [-]", -1, "volume", 0, 1.0, false};
+        return {"layer", -1, "volume", 0, 1.0, false, true};
     case GSN_VTK_PICTURE_PORE_PRESSURE:
-        return {"pore pressure [kPa]", -1, "pore_pressure", 0, 1e-3, false};
+        return {
+            "pore pressure [kPa]", -1, "pore_pressure", 0, 1e-3, false, false};
     default:
-        return {"damage [-]", GSN_FRAME_DAMAGE, nullptr, 0, 1.0, false};
+        return {"damage [-]", GSN_FRAME_DAMAGE, nullptr, 0, 1.0, false, false};
     }
+}
+
+// A colour for each category (the layers), named in the legend.
+vtkSmartPointer<vtkLookupTable> categories(vtkStringArray *names)
+{
+    static const double palette[8][3] = {
+        {0.85, 0.65, 0.35}, {0.45, 0.60, 0.85}, {0.55, 0.75, 0.45},
+        {0.80, 0.45, 0.45}, {0.65, 0.55, 0.80}, {0.95, 0.85, 0.45},
+        {0.50, 0.50, 0.50}, {0.40, 0.75, 0.75}};
+    auto table = vtkSmartPointer<vtkLookupTable>::New();
+    vtkIdType count = names->GetNumberOfValues();
+    table->SetNumberOfTableValues(count);
+    table->IndexedLookupOn();
+    for (vtkIdType k = 0; k < count; ++k) {
+        const double *c = palette[k % 8];
+        table->SetTableValue(k, c[0], c[1], c[2], 1.0);
+        table->SetAnnotation(vtkVariant((double)k), names->GetValue(k));
+    }
+    table->SetRange(0.0, count > 1 ? (double)(count - 1) : 1.0);
+    return table;
 }
 
 // Colour range of a field: damage always [0, 1] so frames compare; others
@@ -195,6 +227,8 @@ void colour_range(const picture_spec &spec, vtkDataArray *shown,
         return;
     }
     shown->GetRange(range, 0);
+    if (spec.categories)
+        return;
     double span = range[1] - range[0];
     double size = std::max(std::fabs(range[0]), std::fabs(range[1]));
     if (!(span > 1e-9 * size) || size == 0.0) {
@@ -242,9 +276,13 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
     // The shown scalar, scaled to the bar's units, on a shallow copy.
     const char *array =
         spec.field >= 0 ? gsn_frame_fields[spec.field].path : spec.array;
-    vtkDataArray *source = grid->GetPointData()->GetArray(array);
+    vtkDataArray *source = spec.categories
+                               ? grid->GetCellData()->GetArray(array)
+                               : grid->GetPointData()->GetArray(array);
     GSN_CHECK(source != nullptr, GSN_ERR_INTERNAL, "grid lacks the array %s",
               array);
+    if (spec.categories)
+        n = grid->GetNumberOfCells();
     vtkNew<vtkDoubleArray> shown;
     shown->SetName("shown");
     shown->SetNumberOfTuples(n);
@@ -261,8 +299,13 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
     }
     vtkNew<vtkUnstructuredGrid> copy;
     copy->ShallowCopy(grid);
-    copy->GetPointData()->AddArray(shown);
-    copy->GetPointData()->SetActiveScalars("shown");
+    if (spec.categories) {
+        copy->GetCellData()->AddArray(shown);
+        copy->GetCellData()->SetActiveScalars("shown");
+    } else {
+        copy->GetPointData()->AddArray(shown);
+        copy->GetPointData()->SetActiveScalars("shown");
+    }
 
     // The half y >= (ymin + ymax) / 2 of the reference body (Figs. 8-9).
     // Nudged by 1e-5 of the width so a plane of mesh nodes lying exactly on
@@ -287,10 +330,17 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
     vtkSmartPointer<vtkDoubleArray> ticks =
         nice_ticks(range, spec.field == GSN_FRAME_DAMAGE);
     vtkSmartPointer<vtkLookupTable> table = rainbow(range[0], range[1]);
+    auto *names = vtkStringArray::SafeDownCast(
+        grid->GetFieldData()->GetAbstractArray("volume_names"));
+    if (spec.categories && names)
+        table = categories(names);
     vtkNew<vtkPolyDataMapper> mapper;
     mapper->SetInputConnection(surface->GetOutputPort());
     mapper->SetLookupTable(table);
-    mapper->SetScalarModeToUsePointFieldData();
+    if (spec.categories)
+        mapper->SetScalarModeToUseCellFieldData();
+    else
+        mapper->SetScalarModeToUsePointFieldData();
     mapper->SelectColorArray("shown");
     mapper->SetScalarRange(range);
     mapper->ScalarVisibilityOn();
@@ -329,8 +379,14 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
 
     vtkNew<vtkScalarBarActor> bar;
     bar->SetLookupTable(table);
-    bar->SetUseCustomLabels(true);
-    bar->SetCustomLabels(ticks);
+    if (spec.categories && names) {
+        bar->SetDrawAnnotations(true);
+        bar->SetNumberOfLabels(0);
+        text_style(bar->GetAnnotationTextProperty(), 20, false);
+    } else {
+        bar->SetUseCustomLabels(true);
+        bar->SetCustomLabels(ticks);
+    }
     bar->SetLabelFormat("%g");
     bar->SetOrientationToHorizontal();
     bar->SetPosition(0.34, 0.03);
@@ -582,6 +638,31 @@ extern "C" int gsn_vtk_grid_add_point_field(struct gsn_vtk_grid *grid,
         array->SetNumberOfTuples(n);
         std::copy(values, values + n, array->GetPointer(0));
         grid->grid->GetPointData()->AddArray(array);
+    } catch (const std::exception &e) {
+        return raise_exception(__func__, e.what());
+    } catch (...) {
+        return raise_exception(__func__, "unknown exception");
+    }
+    return GSN_OK;
+}
+
+extern "C" int
+gsn_vtk_grid_add_cell_categories(struct gsn_vtk_grid *grid, const char *name,
+                                 const int *values, int category_count,
+                                 const char *const *category_names)
+{
+    try {
+        vtkIdType n = grid->grid->GetNumberOfCells();
+        vtkNew<vtkIntArray> array;
+        array->SetName(name);
+        array->SetNumberOfTuples(n);
+        std::copy(values, values + n, array->GetPointer(0));
+        grid->grid->GetCellData()->AddArray(array);
+        vtkNew<vtkStringArray> names;
+        names->SetName((std::string(name) + "_names").c_str());
+        for (int k = 0; k < category_count; ++k)
+            names->InsertNextValue(category_names[k]);
+        grid->grid->GetFieldData()->AddArray(names);
     } catch (const std::exception &e) {
         return raise_exception(__func__, e.what());
     } catch (...) {

@@ -32,6 +32,14 @@ int gsn_vtk_grid_create(int point_count, const double *reference,
 int gsn_vtk_grid_add_point_field(struct gsn_vtk_grid *grid, const char *name,
                                  const double *values);
 
+/* Adds an integer cell array (one value per tetrahedron, copied) whose
+ * values index category_names (the physical volumes of post.c): the
+ * pictures colour them apart with the names in the legend. */
+int gsn_vtk_grid_add_cell_categories(struct gsn_vtk_grid *grid,
+                                     const char *name, const int *values,
+                                     int category_count,
+                                     const char *const *category_names);
+
 /* Frees the grid and sets *grid to NULL; accepts NULL. */
 void gsn_vtk_grid_destroy(struct gsn_vtk_grid **grid);
 
@@ -47,7 +55,7 @@ enum gsn_vtk_picture {
     GSN_VTK_PICTURE_CLIP_EQUIVALENT_STRESS,
     GSN_VTK_PICTURE_CLIP_DISPLACEMENT, /* |u| */
     GSN_VTK_PICTURE_CLIP_EQUIVALENT_PLASTIC_STRAIN,
-    GSN_VTK_PICTURE_LAYERS,        /* the physical volume, on the body */
+    GSN_VTK_PICTURE_LAYERS,        /* the physical volumes, on the body */
     GSN_VTK_PICTURE_PORE_PRESSURE, /* the water table's u, on the body */
     GSN_VTK_PICTURE_COUNT
 };

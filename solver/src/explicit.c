@@ -850,8 +850,8 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
             mean[a] = 0.5 * (old[6 * b + a] + e->stress[6 * p + a]);
         /* the total stress's work; u rises with the load factor */
         for (int a = 0; a < 3 && e->pore_pressure; ++a)
-            mean[a] -= 0.5 * (e->pore_factor + e->load_factor) *
-                       e->pore_pressure[p];
+            mean[a] -=
+                0.5 * (e->pore_factor + e->load_factor) * e->pore_pressure[p];
         share[b] =
             e->plastic_offset < 0
                 ? 1.0

@@ -87,7 +87,7 @@ struct gsn_explicit {
     double *pore_pressure;
     double pore_factor; /* the load factor the present stress carries u with
                            (u is a dead load: raised with the others) */
-    double dt; /* s */
+    double dt;          /* s */
     long step;
     double time; /* s: time_base + (step - step_base) dt */
     /* where the present step dt began (0, 0 until it changes: a reference

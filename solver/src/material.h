@@ -88,15 +88,24 @@ struct gsn_material_model {
     void *context;
 };
 
-/* The soils of a case on its particles (issue 22): one model per material
- * entry (material: one; materials: one per physical volume), all of one
- * kind so that every point's state has one layout, and each particle's. */
+/* The soils of a case on its particles (issue 22): one model per soil,
+ * all of one kind so that every point's state has one layout, and each
+ * particle's. The soils are the case's (material: one; materials: one per
+ * physical volume), then those of the interfaces: a particle where soils
+ * meet has a nodal domain on both sides, and it carries the density and
+ * stiffness of the soil with most of its tetrahedra but the strength of the
+ * weakest soil there (at the effective vertical stress of its weight), as
+ * a slip surface along the interface would find it. */
+enum { GSN_MAX_SOILS = 4 * GSN_MAX_MATERIALS };
 struct gsn_material_set {
-    int count;
-    struct gsn_material_model *model[GSN_MAX_MATERIALS];      /* owned */
-    const struct gsn_material *parameters[GSN_MAX_MATERIALS]; /* the case's */
+    int count;      /* soils */
+    int case_count; /* the first case_count are the case's materials */
+    struct gsn_material_model *model[GSN_MAX_SOILS]; /* owned */
+    struct gsn_material soil[GSN_MAX_SOILS];
+    const struct gsn_material *parameters[GSN_MAX_SOILS]; /* &soil[k] */
     int particle_count;
     int *particle_material; /* index into model, per particle */
+    int interface_count;    /* particles with an interface soil */
 };
 
 /* The set of case c on model m's particles: each particle's material from

@@ -5,6 +5,9 @@
 
 #include "geoscni/error.h"
 #include "geoscni/model.h"
+#include "overburden.h"
+
+#include <math.h>
 
 #include <stdlib.h>
 #include <string.h>
@@ -132,6 +135,95 @@ int gsn_material_update(const struct gsn_material_model *model, size_t count,
     return GSN_OK;
 }
 
+/* The largest shear stress ||dev s|| the soil carries at mean pressure p
+ * (Pa, compression positive): R + 3 alpha p of seed eq. (8). */
+static double soil_strength(const struct gsn_material *soil, double p)
+{
+    return soil->has_plasticity ? soil->dp_R + 3.0 * soil->dp_alpha * p
+                                : INFINITY;
+}
+
+/* The soil with the elasticity and density of set->soil[body] and the
+ * strength (damage, cone) of set->soil[weak]: found, or added. */
+static int interface_soil(struct gsn_material_set *set, const char *kind,
+                          int body, int weak, int *index)
+{
+    struct gsn_material soil = set->soil[body];
+    const struct gsn_material *w = &set->soil[weak];
+    soil.has_damage = w->has_damage;
+    soil.damage_e0 = w->damage_e0;
+    soil.damage_ef = w->damage_ef;
+    soil.has_plasticity = w->has_plasticity;
+    soil.dp_alpha = w->dp_alpha;
+    soil.dp_R = w->dp_R;
+    soil.dp_dilatancy = w->dp_dilatancy;
+    soil.dp_from_mohr_coulomb = w->dp_from_mohr_coulomb;
+    soil.cohesion = w->cohesion;
+    soil.friction_angle = w->friction_angle;
+    soil.dilation_angle = w->dilation_angle;
+    soil.dp_fit = w->dp_fit;
+    for (int k = set->case_count; k < set->count; ++k)
+        if (memcmp(&set->soil[k], &soil, sizeof soil) == 0) {
+            *index = k;
+            return GSN_OK;
+        }
+    GSN_CHECK(set->count < GSN_MAX_SOILS, GSN_ERR_INPUT,
+              "more than %d pairs of soils meet", GSN_MAX_SOILS);
+    int k = set->count;
+    set->soil[k] = soil;
+    set->parameters[k] = &set->soil[k];
+    GSN_CALL(gsn_material_model_create(kind, &set->soil[k], &set->model[k]));
+    set->count = k + 1;
+    *index = k;
+    return GSN_OK;
+}
+
+/* The particles where soils meet (their tetrahedra in more than one
+ * volume) take an interface soil: the weakest soil there at the particle's
+ * effective vertical stress under its weight (gsn_overburden; 0 without
+ * gravity). */
+static int interface_soils(struct gsn_material_set *set, const char *kind,
+                           const struct gsn_case *c, const struct gsn_model *m,
+                           const int *of_volume)
+{
+    int n = m->particle_count, rc = GSN_OK;
+    unsigned *touches = calloc((size_t)n + 1, sizeof *touches);
+    double *vertical = calloc((size_t)n + 1, sizeof *vertical);
+    GSN_CHECK_GOTO(touches && vertical, rc, GSN_ERR_MEMORY, done,
+                   "out of memory");
+    for (int t = 0; t < m->tetrahedron_count; ++t) {
+        int v = m->tetrahedron_volume[t];
+        for (int k = 0; k < 4 && v >= 0; ++k)
+            touches[m->tetrahedra[4 * t + k]] |= 1u << of_volume[v];
+    }
+    int gravity =
+        c->gravity[0] != 0.0 || c->gravity[1] != 0.0 || c->gravity[2] != 0.0;
+    if (gravity)
+        GSN_CALL_GOTO(gsn_overburden(m, c, n, m->position, vertical), rc, done);
+    for (int i = 0; i < n; ++i) {
+        unsigned soils = touches[i];
+        if (!(soils & (soils - 1)))
+            continue; /* one soil */
+        const double *x = &m->position[3 * (size_t)i];
+        double p = fmax(0.0, -(vertical[i] + gsn_water_pressure(c, x)));
+        int body = set->particle_material[i], weak = body;
+        for (int k = 0; k < set->case_count; ++k)
+            if ((soils & (1u << k)) && soil_strength(&set->soil[k], p) <
+                                           soil_strength(&set->soil[weak], p))
+                weak = k;
+        if (weak == body)
+            continue;
+        GSN_CALL_GOTO(
+            interface_soil(set, kind, body, weak, &set->particle_material[i]),
+            rc, done);
+        set->interface_count++;
+    }
+done:
+    free(touches);
+    free(vertical);
+    return rc;
+}
+
 int gsn_material_set_create(const struct gsn_case *c, const struct gsn_model *m,
                             struct gsn_material_set **out)
 {
@@ -149,11 +241,12 @@ int gsn_material_set_create(const struct gsn_case *c, const struct gsn_model *m,
         if (strcmp(gsn_material_name_for_case(&c->materials[k]), "elastic"))
             kind = gsn_material_name_for_case(&c->materials[k]);
     for (int k = 0; k < c->material_count; ++k) {
-        set->parameters[k] = &c->materials[k];
+        set->soil[k] = c->materials[k];
+        set->parameters[k] = &set->soil[k];
         GSN_CALL_GOTO(
-            gsn_material_model_create(kind, &c->materials[k], &set->model[k]),
-            rc, fail);
-        set->count = k + 1;
+            gsn_material_model_create(kind, &set->soil[k], &set->model[k]), rc,
+            fail);
+        set->count = set->case_count = k + 1;
     }
     /* each volume's material, then each particle's */
     int of_volume[256];
@@ -175,6 +268,8 @@ int gsn_material_set_create(const struct gsn_case *c, const struct gsn_model *m,
                        c->path, m->volume_name[v]);
         set->particle_material[i] = of_volume[v];
     }
+    if (c->materials_by_volume && c->material_count > 1)
+        GSN_CALL_GOTO(interface_soils(set, kind, c, m, of_volume), rc, fail);
     *out = set;
     return GSN_OK;
 fail:

@@ -163,7 +163,7 @@ struct gsn_water {
  * tan(phi) divided by factor, psi kept but never above the reduced phi, the
  * cone fitted again as the case fitted it; damage left out (the factor
  * reduces the peak strength). The material must be given in engineers'
- * terms (dp_from_mohr_coulomb). */
+ * terms (dp_from_mohr_coulomb), or be elastic (kept as it is). */
 void gsn_material_reduce_strength(const struct gsn_material *m, double factor,
                                   struct gsn_material *reduced);
 
