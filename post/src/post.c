@@ -42,7 +42,9 @@ struct post_mesh {
      * (Pa) at X; NULL without layers, water */
     int *volume, volume_count;
     char (*volume_name)[GSN_H5_STRING_SIZE];
-    double *pore_pressure;
+    double *pore_pressure, *water_head; /* water_head: the table's height
+                                           above the point, m (negative
+                                           above the table) */
 };
 
 static void post_mesh_free(struct post_mesh *mesh)
@@ -52,6 +54,7 @@ static void post_mesh_free(struct post_mesh *mesh)
     free(mesh->volume);
     free(mesh->volume_name);
     free(mesh->pore_pressure);
+    free(mesh->water_head);
     memset(mesh, 0, sizeof *mesh);
 }
 
@@ -414,6 +417,17 @@ static const struct {
      "clip_equivalent_plastic_strain", "equivalent plastic strain"},
 };
 
+/* The site's pictures, on the body at the last frame: the layers (with the
+ * water table) and the pore pressure, where the model has them. */
+static const struct {
+    enum gsn_vtk_picture picture;
+    const char *file, *what;
+} sites[] = {
+    {GSN_VTK_PICTURE_LAYERS, "layers", "the physical volumes (layers)"},
+    {GSN_VTK_PICTURE_PORE_PRESSURE, "pore_pressure",
+     "the water table's pore pressure"},
+};
+
 /* Renders the pictures of a frame: damage on the body at the chosen frames;
  * u_x, u_y, u_z and equivalent stress on the clipped half at the last. */
 static int post_frame_pictures(const struct gsn_vtk_grid *grid,
@@ -438,24 +452,17 @@ static int post_frame_pictures(const struct gsn_vtk_grid *grid,
     }
     if (index != count - 1)
         return GSN_OK;
-    const struct {
-        const void *values;
-        enum gsn_vtk_picture picture;
-        const char *file, *what;
-    } site[] = {{mesh->volume, GSN_VTK_PICTURE_LAYERS, "layers",
-                 "the physical volumes (layers)"},
-                {mesh->pore_pressure, GSN_VTK_PICTURE_PORE_PRESSURE,
-                 "pore_pressure", "the water table's pore pressure"}};
-    for (size_t k = 0; k < sizeof site / sizeof site[0]; ++k) {
-        if (!site[k].values)
+    const void *values[] = {mesh->volume, mesh->pore_pressure};
+    for (size_t k = 0; k < sizeof sites / sizeof sites[0]; ++k) {
+        if (!values[k])
             continue;
         snprintf(title, sizeof title, "%s: %s, t = %.6g s", case_name,
-                 site[k].what, frame->time);
+                 sites[k].what, frame->time);
         int n = snprintf(path, sizeof path, "%s/%s_frame_%04d.png", folder,
-                         site[k].file, index);
+                         sites[k].file, index);
         GSN_CHECK(n > 0 && (size_t)n < sizeof path, GSN_ERR_INPUT,
                   "path too long: %s", folder);
-        GSN_CALL(post_picture_write(grid, site[k].picture, mesh->bounds, title,
+        GSN_CALL(post_picture_write(grid, sites[k].picture, mesh->bounds, title,
                                     path));
         ++*written;
     }
@@ -723,6 +730,9 @@ static int post_owns_picture(const char *name, int plots)
     for (size_t k = 0; !rest && k < sizeof clips / sizeof clips[0]; ++k)
         if (strncmp(name, clips[k].file, strlen(clips[k].file)) == 0)
             rest = name + strlen(clips[k].file);
+    for (size_t k = 0; !rest && k < sizeof sites / sizeof sites[0]; ++k)
+        if (strncmp(name, sites[k].file, strlen(sites[k].file)) == 0)
+            rest = name + strlen(sites[k].file);
     if (!rest || strncmp(rest, "_frame_", 7) != 0)
         return 0;
     rest += 7;
@@ -879,11 +889,15 @@ static int post_site_fields(const char *model_path, const struct gsn_case *c,
     }
     if (have_case && c->water.present) {
         mesh->pore_pressure = malloc(sizeof(double) * ((size_t)n + 1));
-        GSN_CHECK_GOTO(mesh->pore_pressure, rc, GSN_ERR_MEMORY, done,
-                       "out of memory");
-        for (int i = 0; i < n; ++i)
-            mesh->pore_pressure[i] =
-                gsn_water_pressure(c, &mesh->reference[3 * (size_t)i]);
+        mesh->water_head = malloc(sizeof(double) * ((size_t)n + 1));
+        GSN_CHECK_GOTO(mesh->pore_pressure && mesh->water_head, rc,
+                       GSN_ERR_MEMORY, done, "out of memory");
+        for (int i = 0; i < n; ++i) {
+            const double *x = &mesh->reference[3 * (size_t)i];
+            mesh->pore_pressure[i] = gsn_water_pressure(c, x);
+            mesh->water_head[i] =
+                gsn_water_table_height(c, x) - gsn_height(c, x);
+        }
     }
 done:
     gsn_h5_close(&file);
@@ -904,9 +918,12 @@ static int post_grid(const struct post_mesh *mesh,
         GSN_CALL(gsn_vtk_grid_add_cell_categories(*grid, "volume", mesh->volume,
                                                   mesh->volume_count, names));
     }
-    if (mesh->pore_pressure)
+    if (mesh->pore_pressure) {
         GSN_CALL(gsn_vtk_grid_add_point_field(*grid, "pore_pressure",
                                               mesh->pore_pressure));
+        GSN_CALL(gsn_vtk_grid_add_point_field(*grid, "water_head",
+                                              mesh->water_head));
+    }
     return GSN_OK;
 }
 

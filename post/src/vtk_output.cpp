@@ -19,6 +19,7 @@
 #include <vtkChartXY.h>
 #include <vtkContextScene.h>
 #include <vtkContextView.h>
+#include <vtkContourFilter.h>
 #include <vtkDataSetSurfaceFilter.h>
 #include <vtkDoubleArray.h>
 #include <vtkErrorCode.h>
@@ -397,8 +398,29 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
     text_style(bar->GetLabelTextProperty(), 20, false);
 
     // The bar's title left of it (VTK puts it over the middle label).
+    // The water table on the layers: the line where the water's head above
+    // a point changes sign, drawn over the body in blue.
+    vtkNew<vtkContourFilter> table_line;
+    vtkNew<vtkPolyDataMapper> table_mapper;
+    vtkNew<vtkActor> water;
+    bool wet = spec.categories &&
+               grid->GetPointData()->GetArray("water_head") != nullptr;
+    if (wet) {
+        table_line->SetInputConnection(surface->GetOutputPort());
+        table_line->SetInputArrayToProcess(
+            0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "water_head");
+        table_line->SetValue(0, 0.0);
+        table_mapper->SetInputConnection(table_line->GetOutputPort());
+        table_mapper->ScalarVisibilityOff();
+        table_mapper->SetResolveCoincidentTopologyToPolygonOffset();
+        water->SetMapper(table_mapper);
+        water->GetProperty()->SetColor(0.05, 0.25, 0.95);
+        water->GetProperty()->SetLineWidth(4.0);
+        water->GetProperty()->LightingOff();
+    }
+
     vtkNew<vtkTextActor> bar_title;
-    bar_title->SetInput(spec.bar_title);
+    bar_title->SetInput(wet ? "layer, water table (blue)" : spec.bar_title);
     text_style(bar_title->GetTextProperty(), 24, true);
     bar_title->GetTextProperty()->SetJustificationToRight();
     bar_title->GetTextProperty()->SetVerticalJustificationToCentered();
@@ -424,6 +446,8 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
     renderer->SetViewport(0.0, 0.13, 1.0, 0.93);
     renderer->AddActor(body);
     renderer->AddActor(outline);
+    if (wet)
+        renderer->AddActor(water);
 
     // A fixed oblique camera from the slope face's side (x up-slope, z up),
     // the same for every frame: set by the reference body's bounds.
@@ -431,7 +455,9 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
                         0.5 * (bounds[2] + bounds[3]),
                         0.5 * (bounds[4] + bounds[5])};
     double direction[3] = {1.0, -1.35, 0.85};
-    if (spec.clip) {
+    // a slab (a plane-strain section) is seen nearly square on, as a cut
+    bool slab = bounds[3] - bounds[2] < 0.2 * (bounds[1] - bounds[0]);
+    if (spec.clip || slab) {
         direction[0] = 0.45;
         direction[1] = -1.0;
         direction[2] = 0.4;
@@ -445,7 +471,7 @@ int grid_render(const gsn_vtk_grid *g, enum gsn_vtk_picture picture,
     double view_bounds[6];
     std::copy(bounds, bounds + 6, view_bounds);
     renderer->ResetCamera(view_bounds);
-    camera->Zoom(spec.clip ? 1.3 : 1.1);
+    camera->Zoom(spec.clip || slab ? 1.3 : 1.1);
 
     vtkNew<vtkRenderWindow> window;
     window->SetOffScreenRendering(1);
