@@ -589,10 +589,15 @@ static void point_piola(const double F[9], const double sigma[6], double w,
 static void total_piola(const struct gsn_explicit *e, int p, const double F[9],
                         double w, double P[9])
 {
+    const double *stress = &e->stress[6 * (size_t)p];
+    if (!e->pore_pressure) {
+        point_piola(F, stress, w, P);
+        return;
+    }
     double sigma[6];
-    memcpy(sigma, &e->stress[6 * (size_t)p], sizeof sigma);
-    for (int a = 0; a < 3 && e->pore_pressure; ++a)
-        sigma[a] -= e->load_factor * e->pore_pressure[p];
+    for (int a = 0; a < 6; ++a)
+        sigma[a] =
+            stress[a] - (a < 3 ? e->load_factor * e->pore_pressure[p] : 0.0);
     point_piola(F, sigma, w, P);
 }
 
