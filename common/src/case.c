@@ -1134,79 +1134,6 @@ static int read_gravity(struct reader *r, const yaml_node_t *root,
     return GSN_OK;
 }
 
-/* The unit vector against gravity, or 0 without gravity. */
-static int up_direction(const struct gsn_case *c, double up[3])
-{
-    double g =
-        sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1] +
-             c->gravity[2] * c->gravity[2]);
-    for (int k = 0; k < 3; ++k)
-        up[k] = g > 0.0 ? -c->gravity[k] / g : 0.0;
-    return g > 0.0;
-}
-
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-/* The horizontal unit direction of a water table's section line (from its
- * first point to its last, gravity's component taken off). */
-static void section_direction(const struct gsn_case *c, double d[3])
-{
-    double up[3];
-    up_direction(c, up);
-    const struct gsn_water *w = &c->water;
-    double span[3], length = 0.0;
-    for (int k = 0; k < 3; ++k)
-        span[k] = w->points[w->point_count - 1][k] - w->points[0][k];
-    double rise = dot3(span, up);
-    for (int k = 0; k < 3; ++k) {
-        d[k] = span[k] - rise * up[k];
-        length += d[k] * d[k];
-    }
-    length = sqrt(length);
-    for (int k = 0; k < 3; ++k)
-        d[k] = length > 0.0 ? d[k] / length : 0.0;
-}
-
-double gsn_height(const struct gsn_case *c, const double x[3])
-{
-    double up[3];
-    up_direction(c, up);
-    return dot3(up, x);
-}
-
-double gsn_water_table_height(const struct gsn_case *c, const double x[3])
-{
-    const struct gsn_water *w = &c->water;
-    if (w->point_count == 1)
-        return w->points[0][0];
-    double d[3];
-    section_direction(c, d);
-    double s = dot3(d, x);
-    int last = w->point_count - 1;
-    if (s <= dot3(d, w->points[0]))
-        return gsn_height(c, w->points[0]);
-    if (s >= dot3(d, w->points[last]))
-        return gsn_height(c, w->points[last]);
-    int i = 0;
-    while (i + 1 < last && dot3(d, w->points[i + 1]) < s)
-        ++i;
-    double s0 = dot3(d, w->points[i]), s1 = dot3(d, w->points[i + 1]);
-    double h0 = gsn_height(c, w->points[i]),
-           h1 = gsn_height(c, w->points[i + 1]);
-    return h0 + (h1 - h0) * (s - s0) / (s1 - s0);
-}
-
-double gsn_water_pressure(const struct gsn_case *c, const double x[3])
-{
-    if (!c->water.present)
-        return 0.0;
-    double head = gsn_water_table_height(c, x) - gsn_height(c, x);
-    return head > 0.0 ? c->water.unit_weight * head : 0.0;
-}
-
 /* water: {level: H | table: [[x, y, z], ...], unit_weight: gamma_w}. */
 static int read_water(struct reader *r, const yaml_node_t *root,
                       struct gsn_case *c)
@@ -1219,7 +1146,7 @@ static int read_water(struct reader *r, const yaml_node_t *root,
     w->line = node_line(node);
     GSN_CALL(check_keys(r, node, keys, "water"));
     double up[3];
-    GSN_CHECK(up_direction(c, up), GSN_ERR_INPUT,
+    GSN_CHECK(gsn_up(c, up), GSN_ERR_INPUT,
               "%s:%d: 'water' gives a water table, whose pore pressure is "
               "the water's weight: give gravity too",
               r->path, w->line);
@@ -1227,8 +1154,8 @@ static int read_water(struct reader *r, const yaml_node_t *root,
     yaml_node_t *table = mapping_find(r, node, "table");
     GSN_CHECK(!level != !table, GSN_ERR_INPUT,
               "%s:%d: 'water' needs one of 'level' (the table's height in m, "
-              "along -gravity) or 'table' (a section's line: a list of [x, y, "
-              "z] points), %s",
+              "along -gravity) or 'table' (a list of [x, y, z] points: a "
+              "section's line, or spread over the site), %s",
               r->path, w->line, level ? "not both" : "got neither");
     if (level) {
         GSN_CALL(parse_number(r, level, "water.level", &w->points[0][0]));
@@ -1237,7 +1164,7 @@ static int read_water(struct reader *r, const yaml_node_t *root,
         int count = sequence_length(table);
         GSN_CHECK(count >= 2 && count <= GSN_MAX_WATER_POINTS, GSN_ERR_INPUT,
                   "%s:%d: 'water.table' must be a list of 2 to %d points "
-                  "[x, y, z] along a section (or give 'level'), got %s",
+                  "[x, y, z] (or give 'level'), got %s",
                   r->path, node_line(table), GSN_MAX_WATER_POINTS,
                   node_kind(r, table));
         for (int i = 0; i < count; ++i) {
@@ -1249,22 +1176,27 @@ static int read_water(struct reader *r, const yaml_node_t *root,
                 present, w->points[i]));
         }
         w->point_count = count;
-        double d[3];
-        section_direction(c, d);
-        GSN_CHECK(dot3(d, d) > 0.0, GSN_ERR_INPUT,
+        int bad = 0;
+        int shape = gsn_water_table_prepare(c, &bad);
+        GSN_CHECK(shape != GSN_WATER_STACKED, GSN_ERR_INPUT,
                   "%s:%d: the points of 'water.table' lie above one another; "
-                  "give them along a horizontal line of the section",
+                  "give them along a section, or spread over the site",
                   r->path, node_line(table));
-        for (int i = 1; i < count; ++i)
-            GSN_CHECK(dot3(d, w->points[i]) > dot3(d, w->points[i - 1]),
-                      GSN_ERR_INPUT,
-                      "%s:%d: 'water.table[%d]' does not go on from the "
-                      "point before it along the section; give the points "
-                      "in order, one way along it",
-                      r->path, node_line(table), i);
+        GSN_CHECK(shape != GSN_WATER_BACKWARDS, GSN_ERR_INPUT,
+                  "%s:%d: 'water.table[%d]' does not go on from the "
+                  "point before it along the section; give the points "
+                  "in order, one way along it",
+                  r->path, node_line(table), bad);
+        GSN_CHECK(shape != GSN_WATER_TWICE, GSN_ERR_INPUT,
+                  "%s:%d: 'water.table[%d]' stands on the place of an "
+                  "earlier point (the table has one height there); give "
+                  "one of them",
+                  r->path, node_line(table), bad);
     }
     /* fresh water, 1000 kg/m^3, under the case's gravity */
-    w->unit_weight = 1000.0 * sqrt(dot3(c->gravity, c->gravity));
+    w->unit_weight = 1000.0 * sqrt(c->gravity[0] * c->gravity[0] +
+                                   c->gravity[1] * c->gravity[1] +
+                                   c->gravity[2] * c->gravity[2]);
     int line = w->line;
     GSN_CALL(
         read_number(r, node, "water", "unit_weight", &w->unit_weight, &line));

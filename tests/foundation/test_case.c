@@ -136,6 +136,73 @@ static void test_mohr_coulomb(void)
     TEST_REL(reduced.dp_dilatancy, reduced.dp_alpha, 1e-15); /* associated */
 }
 
+/* water.table (docs/site.md, "Water"): points spread over the site are
+ * met linearly on their Delaunay triangles: a plane through three points
+ * exactly inside them, a paraboloid's grid at its nodes and, between
+ * them, within the grid's linear error; beyond the hull the height of its
+ * nearest place; points on a line in plan are a section; the refusals. */
+static void test_water_table(void)
+{
+    static struct gsn_case c;
+    memset(&c, 0, sizeof c);
+    c.gravity[2] = -9.81;
+    c.water.present = 1;
+    c.water.unit_weight = 9810.0;
+    int bad = 0;
+    const double plane[3][2] = {{0.0, 0.0}, {40.0, 5.0}, {10.0, 30.0}};
+    c.water.point_count = 3;
+    for (int i = 0; i < 3; ++i) {
+        c.water.points[i][0] = plane[i][0];
+        c.water.points[i][1] = plane[i][1];
+        c.water.points[i][2] = 10.0 + 0.1 * plane[i][0] - 0.05 * plane[i][1];
+    }
+    TEST_INT(gsn_water_table_prepare(&c, &bad), GSN_WATER_SURFACE);
+    TEST_INT(c.water.triangle_count, 1);
+    for (int k = 1; k < 10; ++k) { /* inside: s, t > 0, s + t < 1 */
+        double s = 0.07 * k, t = 0.9 - 0.093 * k;
+        double x[3] = {s * 40.0 + t * 10.0, s * 5.0 + t * 30.0, -3.0};
+        double z = 10.0 + 0.1 * x[0] - 0.05 * x[1];
+        TEST_NEAR(gsn_water_table_height(&c, x), z, 1e-12);
+        TEST_NEAR(gsn_water_pressure(&c, x), 9810.0 * (z + 3.0), 1e-8);
+    }
+    double beyond[3] = {-10.0, -10.0, 0.0}; /* nearest the corner (0, 0) */
+    TEST_NEAR(gsn_water_table_height(&c, beyond), 10.0, 1e-12);
+    /* a grid of 5 x 4 points on z = (x^2 + y^2) / 100 */
+    c.water.point_count = 20;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 5; ++i) {
+            double *p = c.water.points[5 * j + i];
+            p[0] = 10.0 * i, p[1] = 10.0 * j;
+            p[2] = (p[0] * p[0] + p[1] * p[1]) / 100.0;
+        }
+    TEST_INT(gsn_water_table_prepare(&c, &bad), GSN_WATER_SURFACE);
+    TEST_INT(c.water.triangle_count, 2 * 4 * 3);
+    for (int n = 0; n < 20; ++n)
+        TEST_NEAR(gsn_water_table_height(&c, c.water.points[n]),
+                  c.water.points[n][2], 1e-12);
+    double middle[3] = {15.0, 15.0, 0.0}; /* a cell's centre: linear error */
+    double h = gsn_water_table_height(&c, middle);
+    TEST_TRUE(h >= 4.5 - 1e-12 && h <= 4.5 + 2.0 * 100.0 / 4.0 / 100.0);
+    /* on one line in plan: a section; back along it; twice; stacked */
+    c.water.point_count = 3;
+    const double line[3][3] = {{0, 0, 1}, {5, 5, 2}, {10, 10, 4}};
+    memcpy(c.water.points, line, sizeof line);
+    TEST_INT(gsn_water_table_prepare(&c, &bad), GSN_WATER_SECTION);
+    double along[3] = {7.5, 7.5, 0.0};
+    TEST_NEAR(gsn_water_table_height(&c, along), 3.0, 1e-12);
+    c.water.points[2][0] = c.water.points[2][1] = 2.0;
+    TEST_INT(gsn_water_table_prepare(&c, &bad), GSN_WATER_BACKWARDS);
+    TEST_INT(bad, 2);
+    const double twice[4][3] = {{0, 0, 1}, {10, 0, 2}, {0, 10, 3}, {10, 0, 4}};
+    c.water.point_count = 4;
+    memcpy(c.water.points, twice, sizeof twice);
+    TEST_INT(gsn_water_table_prepare(&c, &bad), GSN_WATER_TWICE);
+    TEST_INT(bad, 3);
+    c.water.point_count = 2;
+    c.water.points[1][0] = c.water.points[1][1] = 0.0;
+    TEST_INT(gsn_water_table_prepare(&c, &bad), GSN_WATER_STACKED);
+}
+
 int main(void)
 {
     test_begin();
@@ -165,6 +232,7 @@ int main(void)
     TEST_NEAR(c.gravity[0] + c.gravity[1] + c.gravity[2], 0.0, 0.0);
 
     test_mohr_coulomb();
+    test_water_table();
 
     /* A missing case file is an I/O error naming the file. */
     TEST_INT(gsn_case_load("cases/no_such_case.yaml", &c), GSN_ERR_IO);

@@ -4,7 +4,8 @@ fill 3.5-6 m):
   compression OUTDIR TOLERANCE: 100 kPa on the top, rollers on the sides:
     the top settles q sum(h_i / M_i), M = K + 4 mu / 3; prints the error.
   geostatic OUTDIR LEVEL [K0]: the column under its weight with the water
-    table at LEVEL: the frame at t = 0 holds the effective
+    table at LEVEL (m, or "a,bx,by": the plane a + bx x + by y): the frame at
+    t = 0 holds the effective
     sigma'_v = -sum(rho g h) + u, u = gamma_w (LEVEL - z), and
     sigma'_h / sigma'_v the layer's K0 (elastic nu / (1 - nu), or K0 given).
 usage: check_site.py compression OUTDIR TOLERANCE | geostatic OUTDIR LEVEL [K0]"""
@@ -71,14 +72,15 @@ with h5py.File(out + "/model.h5", "r") as m, h5py.File(out + "/results.h5", "r")
         mean = stress[:, 2].mean()
         check(abs(mean / -Q - 1) <= 5e-3, f"mean sigma_zz {mean:.0f} Pa within 0.5% of -q")
     else:
-        level = float(sys.argv[3])
+        plane = [float(v) for v in sys.argv[3].split(",")] + [0.0, 0.0]
+        levels = plane[0] + plane[1] * x[:, 0] + plane[2] * x[:, 1]
         k0 = float(sys.argv[4]) if len(sys.argv) > 4 else None
         stress = r["frames"][frames[0]]["stress"][:]
-        scale = -effective_vertical(0.0, level)
+        scale = -effective_vertical(0.0, plane[0])
         worst_v = worst_h = 0.0
         for low in np.arange(0.0, H, 0.5):
             band = (z >= low) & (z < low + 0.5)
-            expected = np.array([effective_vertical(t, level) for t in z[band]])
+            expected = np.array([effective_vertical(t, h) for t, h in zip(z[band], levels[band])])
             worst_v = max(worst_v, abs((stress[band, 2] - expected).mean()) / scale)
             # K0 off the interfaces by more than a kernel support and a
             # cell (0.6 m at 0.25 m): nearer, the shape functions, smooth

@@ -41,6 +41,12 @@ sed -e "s|^  top: .*|  top: {}|" -e "/^damping/d" \
 for field in volume pore_pressure; do
     grep -aq "Name=\"$field\"" "$out/w/vtu/frame_0000.vtu" || fail "the .vtu has no $field"
 done
+# a table spread over the site: the plane 4.4 + 0.1 x + 0.2 y through the
+# column's corners (linear on their triangles: the plane itself)
+sed -e "s|^water: .*|water: {table: [[0, 0, 4.4], [1, 0, 4.5], [0, 1, 4.6], [1, 1, 4.7]]}|" \
+    "$out/wet.yaml" >"$out/tilted.yaml"
+"$geoscni" run "$out/tilted.yaml" -o "$out/t" --no-pictures >"$out/t.log" 2>&1 || fail "the tilted table failed: $(tail -3 "$out/t.log")"
+/usr/bin/python3 check_site.py geostatic "$out/t" 4.4,0.1,0.2 || fail "check_site.py geostatic with a tilted table"
 sed -e "s|^geostatic: on|geostatic: {k0: 0.5}|" "$out/wet.yaml" >"$out/k0.yaml"
 "$geoscni" run "$out/k0.yaml" -o "$out/k" --no-pictures >"$out/k.log" 2>&1 || fail "the K0 run failed: $(tail -3 "$out/k.log")"
 grep -q "^geostatic: at rest after [0-9]* steps (the stresses of level ground set first, K0 = 0.5)" "$out/k.log" ||

@@ -151,11 +151,16 @@ struct gsn_material {
 struct gsn_water {
     int present;
     double unit_weight; /* gamma_w, N/m^3 */
-    /* 1: a level, the table at height points[0][0]; >= 2: a section's line,
-     * points (x, y, z) in order along one horizontal direction, linear
-     * between them, level beyond the ends, the same across the section */
+    /* 1: a level, the table at height points[0][0]; >= 2: points (x, y,
+     * z) of the table, either a section's line (in order along one
+     * horizontal direction, linear between them, level beyond the ends,
+     * the same across the section) or spread over the site (linear on
+     * their Delaunay triangles in plan, beyond them the height at the
+     * nearest place of their hull): gsn_water_table_prepare */
     int point_count;
     double points[GSN_MAX_WATER_POINTS][3];
+    int triangle_count; /* 0: a level or a section's line */
+    int triangles[2 * GSN_MAX_WATER_POINTS][3];
     int line; /* of the key water */
 };
 
@@ -277,6 +282,22 @@ int gsn_case_pre_signature(const struct gsn_case *c, char *out, size_t size);
  * them (the stable step scales with the spacing); the refinements' zones
  * (boxes, distances, widths) are the geometry's and stay. */
 void gsn_case_scale_spacing(struct gsn_case *c, double factor);
+
+/* The unit vector against gravity; 0 (and up zero) without gravity. */
+int gsn_up(const struct gsn_case *c, double up[3]);
+
+/* What gsn_water_table_prepare found of water.table's points. */
+enum gsn_water_shape {
+    GSN_WATER_SECTION = 0, /* along one line in plan, in order */
+    GSN_WATER_SURFACE,     /* spread: triangulated */
+    GSN_WATER_STACKED,     /* all at one place in plan */
+    GSN_WATER_BACKWARDS,   /* on one line, point *bad out of order */
+    GSN_WATER_TWICE        /* spread, point *bad at an earlier one's place */
+};
+
+/* Makes the table of c->water.points ready (its triangles when spread)
+ * and says what it is; the last three shapes are errors. */
+int gsn_water_table_prepare(struct gsn_case *c, int *bad);
 
 /* The water table's pore pressure u at position x (Pa, compression
  * positive; 0 above the table or without water:), and the table's height
