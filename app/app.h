@@ -50,6 +50,14 @@ int command_converge(const struct arguments *a);
 /* geoscni fos (app/fos.c) */
 int command_fos(const struct arguments *a);
 
+/* The factor of safety of case c (its strength reduced by trial factors,
+ * c left as it was) into outdir (locked by the caller): pre where needed, the
+ * trials (those of an earlier study of the same model and strength kept), the
+ * mechanism's post; prints 'factor of safety: X.XX'. *result: the bracket's
+ * middle; *trials_run: the trials this call ran. */
+int app_fos_study(const struct arguments *a, struct gsn_case *c,
+                  const char *outdir, double *result, int *trials_run);
+
 /* geoscni ground (app/ground.c) */
 int command_ground(const struct arguments *a);
 

@@ -25,6 +25,7 @@
 #define CONVERGE_LEVELS 3
 #define CONVERGE_RATIO 1.5
 #define CONVERGE_TOLERANCE 0.02
+#define CONVERGE_FOS_BRACKET 0.0025
 enum { CONVERGE_MAX_LEVELS = 8, PREDICTED_POINTS = 8 };
 
 struct level {
@@ -156,10 +157,27 @@ static int level_run(const struct arguments *a, const struct gsn_case *base,
     struct arguments level_arguments = *a;
     level_arguments.restart = level_interrupted(results, part);
     level_arguments.rerun = 0;
+    /* converge's --tol is not fos's: a level's factor is bracketed to
+     * 0.0025 (fos: 0.01), so the steps of the bisection do not pass for
+     * the spacing's effect (two more trials a level) */
+    level_arguments.tolerance = CONVERGE_FOS_BRACKET;
     double wall = app_seconds(CLOCK_MONOTONIC);
     double cpu = app_seconds(CLOCK_PROCESS_CPUTIME_ID);
     GSN_CALL(app_lock_outdir(l->folder));
     int solved = 0;
+    if (q->kind == GSN_QUANTITY_FACTOR_OF_SAFETY) {
+        /* a fos study of the level (trials of an earlier call kept) */
+        int trials = 0;
+        GSN_CALL(
+            app_fos_study(&level_arguments, &c, l->folder, &l->value, &trials));
+        solved = trials > 0;
+        l->wall =
+            solved ? app_seconds(CLOCK_MONOTONIC) - wall : l->earlier_wall;
+        l->cpu = solved ? app_seconds(CLOCK_PROCESS_CPUTIME_ID) - cpu
+                        : l->earlier_cpu;
+        GSN_CALL(level_size(l));
+        return GSN_OK;
+    }
     GSN_CALL(app_run_case(&level_arguments, &c, l->folder, 0, &solved));
     /* a level found done: its time is the earlier call's (NaN if unknown);
      * a continued one counts this call's part only */
@@ -242,8 +260,9 @@ static void print_report(const struct level *levels, int count,
         printf("converge: NOT IN THE ASYMPTOTIC RANGE: %s. Do not trust the "
                "extrapolation; refine further (--levels %d) or start finer\n",
                e->reason, count + 1);
-    printf("converged value: %.6g %s (estimated error %.2g %s, %.2f%%)\n",
-           e->extrapolated, unit, e->error, unit,
+    const char *space = unit[0] ? " " : ""; /* none before no unit */
+    printf("converged value: %.6g%s%s (estimated error %.2g%s%s, %.2f%%)\n",
+           e->extrapolated, space, unit, e->error, space, unit,
            100.0 * e->error / fabs(e->extrapolated));
     int coarsest = -1;
     for (int i = count - 1; i >= 0; --i)
@@ -347,7 +366,8 @@ int command_converge(const struct arguments *a)
             printf("\n");
         }
     }
-    if (q.kind != GSN_QUANTITY_DISPLACEMENT_AT && !q.per_area) {
+    if (q.kind != GSN_QUANTITY_DISPLACEMENT_AT &&
+        q.kind != GSN_QUANTITY_FACTOR_OF_SAFETY && !q.per_area) {
         /* the default quantity turns into the pressure; one asked for is
          * kept, with the warning */
         int changed = 0;
@@ -368,8 +388,9 @@ int command_converge(const struct arguments *a)
     if (!a->quiet)
         print_report(levels, count, &estimate, tolerance, description, unit);
     else
-        printf("converged value: %.6g %s (estimated error %.2g %s)%s%s\n",
-               estimate.extrapolated, unit, estimate.error, unit,
+        printf("converged value: %.6g%s%s (estimated error %.2g%s%s)%s%s\n",
+               estimate.extrapolated, unit[0] ? " " : "", unit, estimate.error,
+               unit[0] ? " " : "", unit,
                estimate.trusted ? "" : "; not in the asymptotic range: ",
                estimate.reason);
 

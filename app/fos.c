@@ -331,30 +331,16 @@ static int fos_mechanism(const struct arguments *a, const char *outdir,
     return GSN_OK;
 }
 
-int command_fos(const struct arguments *a)
+int app_fos_study(const struct arguments *a, struct gsn_case *c,
+                  const char *outdir, double *result, int *trials_run)
 {
-    struct gsn_case *c = malloc(sizeof *c);
-    GSN_CHECK(c, GSN_ERR_MEMORY, "out of memory");
-    int rc = gsn_case_load(a->cases[0], c);
-    if (rc == GSN_OK)
-        rc = fos_check_case(c);
-    if (rc != GSN_OK) {
-        free(c);
-        return rc;
-    }
-    gsn_case_warn_implausible(c, stderr);
     double tolerance = a->tolerance > 0.0 ? a->tolerance : FOS_TOLERANCE;
-    char outdir[GSN_PATH_SIZE], name[256], csv[GSN_PATH_SIZE],
-        signature[2 * GSN_PATH_SIZE];
-    gsn_case_name(c->path, name, sizeof name);
-    if (a->outdir)
-        snprintf(outdir, sizeof outdir, "%s", a->outdir);
-    else
-        snprintf(outdir, sizeof outdir, "%s_fos", name);
+    char csv[GSN_PATH_SIZE], signature[2 * GSN_PATH_SIZE];
+    int rc = GSN_OK;
+    GSN_CALL(fos_check_case(c));
     struct search *s = calloc(2, sizeof *s), *earlier = s + 1;
     GSN_CHECK_GOTO(s, rc, GSN_ERR_MEMORY, done, "out of memory");
     s->high = INFINITY;
-    GSN_CALL_GOTO(app_lock_outdir(outdir), rc, done);
     GSN_CALL_GOTO(app_pre(a, c, outdir), rc, done);
     GSN_CALL_GOTO(gsn_path_join(csv, sizeof csv, outdir, "fos.csv"), rc, done);
     GSN_CALL_GOTO(fos_signature(c, outdir, signature, sizeof signature), rc,
@@ -437,7 +423,9 @@ int command_fos(const struct arguments *a)
         if (s->trials[i].factor == s->high)
             failed = &s->trials[i];
     GSN_CALL_GOTO(fos_mechanism(a, outdir, failed), rc, done);
-    printf("factor of safety: %.2f\n", 0.5 * (s->low + s->high));
+    *result = 0.5 * (s->low + s->high);
+    *trials_run = ran;
+    printf("factor of safety: %.2f\n", *result);
     if (!a->quiet)
         printf("fos: the body stands at %.4f and fails at %.4f (%d trials); "
                "the mechanism at %.4f: %s/mechanism (pictures/, the .pvd); "
@@ -445,6 +433,32 @@ int command_fos(const struct arguments *a)
                s->low, s->high, s->count, s->high, outdir, csv);
 done:
     free(s);
+    return rc;
+}
+
+int command_fos(const struct arguments *a)
+{
+    struct gsn_case *c = malloc(sizeof *c);
+    GSN_CHECK(c, GSN_ERR_MEMORY, "out of memory");
+    int rc = gsn_case_load(a->cases[0], c);
+    if (rc == GSN_OK)
+        rc = fos_check_case(c);
+    if (rc != GSN_OK) {
+        free(c);
+        return rc;
+    }
+    gsn_case_warn_implausible(c, stderr);
+    char outdir[GSN_PATH_SIZE], name[256];
+    gsn_case_name(c->path, name, sizeof name);
+    if (a->outdir)
+        snprintf(outdir, sizeof outdir, "%s", a->outdir);
+    else
+        snprintf(outdir, sizeof outdir, "%s_fos", name);
+    double factor = 0.0;
+    int trials = 0;
+    rc = app_lock_outdir(outdir);
+    if (rc == GSN_OK)
+        rc = app_fos_study(a, c, outdir, &factor, &trials);
     free(c);
     return rc;
 }

@@ -15,8 +15,8 @@
 
 static const char quantity_forms[] =
     "peak_force, peak_force:SURFACE, force_at:SETTLEMENT, "
-    "force_at:SETTLEMENT:SURFACE, the same with pressure for force, or "
-    "displacement_at:X,Y,Z (m)";
+    "force_at:SETTLEMENT:SURFACE, the same with pressure for force, "
+    "displacement_at:X,Y,Z (m), or factor_of_safety";
 
 /* Reads count numbers separated by `separator` from text; the end of the
  * last number in *end. 1 on success. */
@@ -61,6 +61,12 @@ int gsn_quantity_parse(const char *text, struct gsn_quantity *q)
         }
         q->per_area = per_area;
     }
+    if (!ok && !strcmp(text, "factor_of_safety")) {
+        q->kind = GSN_QUANTITY_FACTOR_OF_SAFETY;
+        q->per_area = 0;
+        rest = text + strlen(text);
+        ok = 1;
+    }
     if (!ok && !strncmp(text, "displacement_at:", 16)) {
         q->kind = GSN_QUANTITY_DISPLACEMENT_AT;
         q->per_area = 0;
@@ -86,6 +92,11 @@ int gsn_quantity_resolve(const struct gsn_case *c, struct gsn_quantity *q,
         snprintf(description, size, "displacement at (%g, %g, %g) m",
                  q->point[0], q->point[1], q->point[2]);
         *unit = "m";
+        return GSN_OK;
+    }
+    if (q->kind == GSN_QUANTITY_FACTOR_OF_SAFETY) {
+        snprintf(description, size, "factor of safety");
+        *unit = "";
         return GSN_OK;
     }
     int found = -1;
@@ -285,6 +296,8 @@ done:
 int gsn_quantity_measure(const char *outdir, const struct gsn_case *c,
                          const struct gsn_quantity *q, double *value)
 {
+    GSN_CHECK(q->kind != GSN_QUANTITY_FACTOR_OF_SAFETY, GSN_ERR_INTERNAL,
+              "the factor of safety is a study's, not a run's");
     if (q->kind == GSN_QUANTITY_DISPLACEMENT_AT)
         GSN_CALL(displacement_measure(outdir, c, q, value));
     else

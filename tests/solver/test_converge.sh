@@ -90,9 +90,30 @@ awk -v u="${u:-0}" 'BEGIN { exit !(u > 0.1 && u < 0.25) }' ||
     fail "the displacement under the footing ($u m) is not between 0.1 and 0.25 m"
 echo "level 3: pressure at 0.1 m $at Pa (peak $peak Pa), displacement under the footing $u m"
 
+# The factor of safety as the quantity (issue 20, point 2): a fos study per
+# level (Griffiths & Lane's slope at 2.25, 1.5 and 1 m: each level's factor
+# between 1.3 and 1.5, bracketed to 0.0025); called again, every trial of
+# every level is kept and the line is the same.
+sed -e "s|^geometry: .*|geometry: $(pwd)/../../geometries/slope_gl.geo|" cases/gl_slope.yaml >"$out/gl.yaml"
+"$geoscni" converge "$out/gl.yaml" -o "$out/f" --quantity factor_of_safety --finest 1.0 \
+    --no-pictures >"$out/log9" 2>&1 || fail "converge of the factor of safety failed: $(tail -3 "$out/log9")"
+grep "^converge: level [0-9]: factor of safety\|^converged value" "$out/log9"
+levels=$(sed -n 's/^converge: level [0-9]: factor of safety = \([0-9.]*\) .*/\1/p' "$out/log9" | tr '\n' ' ')
+for f in $levels; do
+    awk -v f="$f" 'BEGIN { exit !(f > 1.3 && f < 1.5) }' || fail "a level's factor of safety $f is not between 1.3 and 1.5"
+done
+[ "$(echo $levels | wc -w)" -eq 3 ] || fail "not three levels' factors: $levels"
+"$geoscni" converge "$out/gl.yaml" -o "$out/f" --quantity factor_of_safety --finest 1.0 \
+    --no-pictures >"$out/log10" 2>&1 || fail "the second converge of the factor of safety failed"
+[ "$(grep '^converged value' "$out/log9")" = "$(grep '^converged value' "$out/log10")" ] ||
+    fail "the second study's line differs: $(grep '^converged value' "$out/log10")"
+grep -q "from fos.csv" "$out/log10" && ! grep "^fos: factor" "$out/log10" | grep -vq "from fos.csv" ||
+    fail "the second study ran trials again"
+
 # Bad options.
 for bad in "--levels 2" "--levels 3.5" "--ratio 1.05" "--tol 2" "--quantity peak" \
-    "--quantity force_at:-1" "--quantity peak_force:nowhere" "--quantity displacement_at:1,2"; do
+    "--quantity force_at:-1" "--quantity peak_force:nowhere" "--quantity displacement_at:1,2" \
+    "--quantity factor_of_safety:footing"; do
     # shellcheck disable=SC2086
     "$geoscni" converge "$out/strip.yaml" -o "$out/bad" $bad >"$out/err" 2>&1
     status=$?

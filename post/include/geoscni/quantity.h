@@ -10,12 +10,14 @@ extern "C" {
 #endif
 
 enum gsn_quantity_kind {
-    GSN_QUANTITY_PEAK_FORCE = 0, /* the largest force on the body through a
-                                    moving boundary entry, along its motion
-                                    (the load-settlement plot's peak) */
-    GSN_QUANTITY_FORCE_AT,       /* that force at a given settlement */
-    GSN_QUANTITY_DISPLACEMENT_AT /* |u| at a point of the reference body, at
-                                    the last frame */
+    GSN_QUANTITY_PEAK_FORCE = 0,  /* the largest force on the body through a
+                                     moving boundary entry, along its motion
+                                     (the load-settlement plot's peak) */
+    GSN_QUANTITY_FORCE_AT,        /* that force at a given settlement */
+    GSN_QUANTITY_DISPLACEMENT_AT, /* |u| at a point of the reference body,
+                                     at the last frame */
+    GSN_QUANTITY_FACTOR_OF_SAFETY /* geoscni fos of the level (app/fos.c),
+                                     not a run's number */
 };
 
 struct gsn_quantity {
@@ -30,8 +32,8 @@ struct gsn_quantity {
 };
 
 /* Parses "peak_force", "peak_force:SURFACE", "force_at:S" (S in m),
- * "force_at:S:SURFACE", the same with "pressure" for "force", or
- * "displacement_at:X,Y,Z" (m). */
+ * "force_at:S:SURFACE", the same with "pressure" for "force",
+ * "displacement_at:X,Y,Z" (m), or "factor_of_safety". */
 int gsn_quantity_parse(const char *text, struct gsn_quantity *q);
 
 /* Names the boundary entry of a force where none was given (the case's one
