@@ -1678,6 +1678,42 @@ static int check_memory(const struct run *r)
     return GSN_OK;
 }
 
+/* The soils on the particles and the water's pore pressure, a line each
+ * (docs/site.md). */
+static void print_site(const struct run *r)
+{
+    const struct gsn_case *c = r->c;
+    const struct gsn_material_set *set = r->materials;
+    if (c->materials_by_volume) {
+        printf("soils:");
+        for (int k = 0; k < set->case_count; ++k) {
+            int count = 0; /* an interface soil is its majority's volume */
+            for (int i = 0; i < set->particle_count; ++i)
+                count += !strcmp(set->soil[set->particle_material[i]].volume,
+                                 c->materials[k].volume);
+            printf("%s %s %d particles", k ? "," : "", c->materials[k].volume,
+                   count);
+        }
+        if (set->interface_count > 0)
+            printf("; %d on interfaces carry the weaker soil's strength",
+                   set->interface_count);
+        printf("\n");
+    }
+    if (c->water.present) {
+        double largest = 0.0;
+        for (int i = 0; i < r->model.particle_count; ++i)
+            largest =
+                fmax(largest,
+                     gsn_water_pressure(c, &r->model.position[3 * (size_t)i]));
+        printf("water: %s, gamma_w %.4g kN/m^3: pore pressure up to %.4g kPa "
+               "(the material sees the effective stress)\n",
+               c->water.point_count == 1 ? "a level table"
+               : c->water.triangle_count ? "a table spread over the site"
+                                         : "a section's table",
+               1e-3 * c->water.unit_weight, 1e-3 * largest);
+    }
+}
+
 static int run_setup(struct run *r)
 {
     const struct gsn_case *c = r->c;
@@ -1710,6 +1746,8 @@ static int run_setup(struct run *r)
                method_text(c, method, sizeof method),
                gsn_quadrature_bytes(r->reference->quadrature) / 1e6,
                now_seconds() - t0, r->total_steps);
+    if (!r->options->quiet && !r->options->setup_warned)
+        print_site(r);
     if (r->reference->quadrature->held_fallback_count > 0 &&
         !r->options->setup_warned)
         fprintf(stderr,

@@ -38,6 +38,9 @@ sed -e "s|^  top: .*|  top: {}|" -e "/^damping/d" \
     -e "s|^output: .*|output: {every: 0.01}|" "$out/column.yaml" >"$out/wet.yaml"
 "$geoscni" run "$out/wet.yaml" -o "$out/w" >"$out/w.log" 2>&1 || fail "the wet column failed: $(tail -3 "$out/w.log")"
 /usr/bin/python3 check_site.py geostatic "$out/w" 4.5 || fail "check_site.py geostatic"
+grep -q "^soils: sand [0-9]* particles, clay [0-9]* particles, fill [0-9]* particles$" "$out/w.log" &&
+    grep -q "^water: a level table, gamma_w 9.81 kN/m^3: pore pressure up to 44.15 kPa" "$out/w.log" ||
+    fail "solve does not say its soils and water: $(grep '^soils\|^water' "$out/w.log")"
 for field in volume pore_pressure; do
     grep -aq "Name=\"$field\"" "$out/w/vtu/frame_0000.vtu" || fail "the .vtu has no $field"
 done
