@@ -34,7 +34,7 @@ for ratio in 0 0.2 0.4 0.5 0.7 0.9; do
     sed -e "s|^geometry: .*|geometry: $root/geometries/slope_gl.geo|" \
         -e "s|^geostatic: on|geostatic: on\nwater: {level: $level, unit_weight: 10000}|" \
         "$cases/gl_slope.yaml" >"$out/drawdown_$ratio.yaml"
-    study "drawdown_L/H_$ratio" "$out/drawdown_$ratio.yaml"
+    study "drawdown_L_over_H_$ratio" "$out/drawdown_$ratio.yaml"
 done
 for lambda in 0.5 1 2; do
     c2=$(awk -v l="$lambda" 'BEGIN { printf "%g", 50 * l }')
