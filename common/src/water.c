@@ -28,9 +28,7 @@ double gsn_height(const struct gsn_case *c, const double x[3])
     return dot3(up, x);
 }
 
-/* Two orthonormal horizontal axes: the coordinate axis least along up made
- * normal to it, and up x that. */
-static void plan_axes(const struct gsn_case *c, double e[2][3])
+void gsn_plan_axes(const struct gsn_case *c, double e[2][3])
 {
     double up[3];
     gsn_up(c, up);
@@ -158,7 +156,7 @@ int gsn_water_table_prepare(struct gsn_case *c, int *bad)
     if (n < 2)
         return GSN_WATER_SECTION;
     double e[2][3], plan[GSN_MAX_WATER_POINTS + 3][2];
-    plan_axes(c, e);
+    gsn_plan_axes(c, e);
     double size = 0.0;
     for (int i = 0; i < n; ++i) {
         to_plan(&e[0][0], w->points[i], plan[i]);
@@ -204,7 +202,7 @@ static double surface_height(const struct gsn_case *c, const double x[3])
 {
     const struct gsn_water *w = &c->water;
     double e[2][3], q[2];
-    plan_axes(c, e);
+    gsn_plan_axes(c, e);
     to_plan(&e[0][0], x, q);
     double best = INFINITY, height = 0.0;
     for (int k = 0; k < w->triangle_count; ++k) {

@@ -428,6 +428,24 @@ static const struct {
      "the water table's pore pressure"},
 };
 
+/* Picture `file` of frame index in folder (FILE_frame_NNNN.png), counted
+ * in *written. */
+static int post_frame_picture(const struct gsn_vtk_grid *grid,
+                              enum gsn_vtk_picture picture,
+                              const double bounds[6], const char *folder,
+                              const char *file, int index, const char *title,
+                              int *written)
+{
+    char path[GSN_PATH_SIZE];
+    int n = snprintf(path, sizeof path, "%s/%s_frame_%04d.png", folder, file,
+                     index);
+    GSN_CHECK(n > 0 && (size_t)n < sizeof path, GSN_ERR_INPUT,
+              "path too long: %s", folder);
+    GSN_CALL(post_picture_write(grid, picture, bounds, title, path));
+    ++*written;
+    return GSN_OK;
+}
+
 /* Renders the pictures of a frame: damage on the body at the chosen frames;
  * u_x, u_y, u_z and equivalent stress on the clipped half at the last. */
 static int post_frame_pictures(const struct gsn_vtk_grid *grid,
@@ -437,18 +455,13 @@ static int post_frame_pictures(const struct gsn_vtk_grid *grid,
                                const char *case_name, int *written,
                                unsigned *noted)
 {
-    char path[GSN_PATH_SIZE], title[TITLE_SIZE];
+    char title[TITLE_SIZE];
     if (post_is_picture_frame(index, count) &&
         post_picture_drawable(frame, GSN_VTK_PICTURE_DAMAGE, noted)) {
         snprintf(title, sizeof title, "%s: damage at t = %.6g s", case_name,
                  frame->time);
-        int n = snprintf(path, sizeof path, "%s/damage_frame_%04d.png", folder,
-                         index);
-        GSN_CHECK(n > 0 && (size_t)n < sizeof path, GSN_ERR_INPUT,
-                  "path too long: %s", folder);
-        GSN_CALL(post_picture_write(grid, GSN_VTK_PICTURE_DAMAGE, mesh->bounds,
-                                    title, path));
-        ++*written;
+        GSN_CALL(post_frame_picture(grid, GSN_VTK_PICTURE_DAMAGE, mesh->bounds,
+                                    folder, "damage", index, title, written));
     }
     if (index != count - 1)
         return GSN_OK;
@@ -458,13 +471,9 @@ static int post_frame_pictures(const struct gsn_vtk_grid *grid,
             continue;
         snprintf(title, sizeof title, "%s: %s, t = %.6g s", case_name,
                  sites[k].what, frame->time);
-        int n = snprintf(path, sizeof path, "%s/%s_frame_%04d.png", folder,
-                         sites[k].file, index);
-        GSN_CHECK(n > 0 && (size_t)n < sizeof path, GSN_ERR_INPUT,
-                  "path too long: %s", folder);
-        GSN_CALL(post_picture_write(grid, sites[k].picture, mesh->bounds, title,
-                                    path));
-        ++*written;
+        GSN_CALL(post_frame_picture(grid, sites[k].picture, mesh->bounds,
+                                    folder, sites[k].file, index, title,
+                                    written));
     }
     double middle = 0.5 * (mesh->bounds[2] + mesh->bounds[3]);
     for (size_t k = 0; k < sizeof clips / sizeof clips[0]; ++k) {
@@ -473,13 +482,9 @@ static int post_frame_pictures(const struct gsn_vtk_grid *grid,
         snprintf(title, sizeof title,
                  "%s: %s on the half y >= %.4g m, t = %.6g s", case_name,
                  clips[k].what, middle, frame->time);
-        int n = snprintf(path, sizeof path, "%s/%s_frame_%04d.png", folder,
-                         clips[k].file, index);
-        GSN_CHECK(n > 0 && (size_t)n < sizeof path, GSN_ERR_INPUT,
-                  "path too long: %s", folder);
-        GSN_CALL(post_picture_write(grid, clips[k].picture, mesh->bounds, title,
-                                    path));
-        ++*written;
+        GSN_CALL(post_frame_picture(grid, clips[k].picture, mesh->bounds,
+                                    folder, clips[k].file, index, title,
+                                    written));
     }
     return GSN_OK;
 }

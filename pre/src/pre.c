@@ -407,6 +407,20 @@ done:
     return rc;
 }
 
+/* The name of physical group tag of dimension dim, or its tag as text
+ * when it has none. */
+static void physical_group_name(int dim, int tag, char out[GSN_H5_STRING_SIZE])
+{
+    char *name = NULL;
+    int ierr = 0;
+    gmshModelGetPhysicalName(dim, tag, &name, &ierr);
+    if (ierr == 0 && name && name[0])
+        snprintf(out, GSN_H5_STRING_SIZE, "%s", name);
+    else
+        snprintf(out, GSN_H5_STRING_SIZE, "%d", tag);
+    gmshFree(name);
+}
+
 /* The physical surfaces: names, their triangles (hashed into surface_of)
  * and the particles on them. */
 static int mesh_read_surfaces(struct mesh *m, const int *index, size_t limit,
@@ -428,13 +442,7 @@ static int mesh_read_surfaces(struct mesh *m, const int *index, size_t limit,
                    rc, GSN_ERR_MEMORY, done, "cannot allocate the surfaces");
     for (int s = 0; s < ns; ++s) {
         int tag = groups[2 * s + 1];
-        char *name = NULL;
-        gmshModelGetPhysicalName(2, tag, &name, &ierr);
-        if (ierr == 0 && name && name[0])
-            snprintf(m->surface_name[s], sizeof m->surface_name[s], "%s", name);
-        else
-            snprintf(m->surface_name[s], sizeof m->surface_name[s], "%d", tag);
-        gmshFree(name);
+        physical_group_name(2, tag, m->surface_name[s]);
         m->surface_tag[s] = tag;
         int *entities = NULL;
         size_t entity_count = 0;
@@ -502,13 +510,7 @@ static int mesh_read_volumes(struct mesh *m, const size_t *element_tags)
     }
     for (int v = 0; v < nv; ++v) {
         int tag = groups[2 * v + 1];
-        char *name = NULL;
-        gmshModelGetPhysicalName(3, tag, &name, &ierr);
-        snprintf(m->volume_name[v], sizeof m->volume_name[v], "%s",
-                 ierr == 0 && name && name[0] ? name : "");
-        if (!m->volume_name[v][0])
-            snprintf(m->volume_name[v], sizeof m->volume_name[v], "%d", tag);
-        gmshFree(name);
+        physical_group_name(3, tag, m->volume_name[v]);
         m->volume_tag[v] = tag;
         int *entities = NULL;
         size_t entity_count = 0;

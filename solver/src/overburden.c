@@ -51,24 +51,11 @@ static void tetrahedron_cells(const struct plan_grid *g,
     }
 }
 
-static int grid_create(const struct gsn_model *m, const double up[3],
+static int grid_create(const struct gsn_model *m, const struct gsn_case *c,
                        struct plan_grid *g)
 {
     memset(g, 0, sizeof *g);
-    /* plan axes: the coordinate axis least along up, made normal to it */
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-        axis = fabs(up[k]) < fabs(up[axis]) ? k : axis;
-    double a[3] = {0.0, 0.0, 0.0};
-    a[axis] = 1.0;
-    double along = dot(a, up), length = 0.0;
-    for (int k = 0; k < 3; ++k) {
-        g->e[0][k] = a[k] - along * up[k];
-        length += g->e[0][k] * g->e[0][k];
-    }
-    for (int k = 0; k < 3; ++k)
-        g->e[0][k] /= sqrt(length);
-    cross(up, g->e[0], g->e[1]);
+    gsn_plan_axes(c, g->e);
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
     for (int i = 0; i < m->particle_count; ++i)
         for (int k = 0; k < 2; ++k) {
@@ -185,9 +172,7 @@ int gsn_overburden(const struct gsn_model *m, const struct gsn_case *c,
                    int count, const double *points, double *sigma_v)
 {
     double gravity = sqrt(dot(c->gravity, c->gravity)), up[3];
-    GSN_CHECK(gravity > 0.0, GSN_ERR_INTERNAL, "overburden without gravity");
-    for (int k = 0; k < 3; ++k)
-        up[k] = -c->gravity[k] / gravity;
+    GSN_CHECK(gsn_up(c, up), GSN_ERR_INTERNAL, "overburden without gravity");
     int nt = m->tetrahedron_count, rc = GSN_OK;
     double *density = malloc(sizeof(double) * 2 * ((size_t)nt + 1));
     GSN_CHECK(density, GSN_ERR_MEMORY, "cannot allocate %d densities", nt);
@@ -202,7 +187,7 @@ int gsn_overburden(const struct gsn_model *m, const struct gsn_case *c,
         density[t] = c->materials[k].density;
         saturated[t] = c->materials[k].saturated_density;
     }
-    GSN_CALL_GOTO(grid_create(m, up, &g), rc, done);
+    GSN_CALL_GOTO(grid_create(m, c, &g), rc, done);
     double size = g.cell * (g.size[0] > g.size[1] ? g.size[0] : g.size[1]);
     double d = COLUMN_OFFSET * size;
     /* four sides, a direction no mesh line is likely to follow */

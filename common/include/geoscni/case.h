@@ -286,6 +286,10 @@ void gsn_case_scale_spacing(struct gsn_case *c, double factor);
 /* The unit vector against gravity; 0 (and up zero) without gravity. */
 int gsn_up(const struct gsn_case *c, double up[3]);
 
+/* Two orthonormal horizontal axes (normal to gravity): the coordinate axis
+ * least along up made normal to it, and up x that. */
+void gsn_plan_axes(const struct gsn_case *c, double e[2][3]);
+
 /* What gsn_water_table_prepare found of water.table's points. */
 enum gsn_water_shape {
     GSN_WATER_SECTION = 0, /* along one line in plan, in order */
