@@ -7,8 +7,9 @@
 # footing's peak load and where it occurs.
 # RIGID=1 makes the footing a rigid body the soil cannot enter (rigid: true,
 # docs/solver.md "Rigid bodies"). INTEGRATION replaces the case's
-# integration (e.g. "{method: scni, stabilization: mscni}").
-# Usage: [RIGID=1] [INTEGRATION=...] bench/paper_slopes.sh [BUILD_DIR] [OUT]
+# integration (e.g. "{method: scni, stabilization: mscni}"); UPDATE sets
+# reference_update (e.g. "off" or "{strain: 0.2, min_steps: 20}").
+# Usage: [RIGID=1] [INTEGRATION=...] [UPDATE=...] bench/paper_slopes.sh [BUILD_DIR] [OUT]
 #        [FACTOR] [SETTLEMENT] [CASES]
 #        (default build, out/paper, 5, 1.0, "slope_I slope_II")
 set -eu
@@ -20,6 +21,7 @@ settlement=${4:-1.0}
 cases=${5:-slope_I slope_II}
 rigid=${RIGID:+, rigid: true}
 integration=${INTEGRATION:-}
+update=${UPDATE:-}
 geoscni=$root/$build/bin/geoscni
 [ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
 mkdir -p "$out"
@@ -33,12 +35,13 @@ for name in $cases; do
     every=$(echo "$settlement $v" | awk '{print $1 / $2 / 40}')
     mkdir -p "$out/$name"
     case_file=$out/$name/$name.yaml
+    { [ -z "$update" ] || echo "reference_update: $update"
     sed -e "s|^geometry: *|geometry: $root/geometries/|" \
         -e "s|velocity: \[null, null, -$speed\]|velocity: [null, null, -$v]$rigid|" \
         -e "s|^\( *end:\).*|\1 $end|" -e "s|^\( *step:\).*|\1 auto|" \
         -e "s|^\( *every:\).*|\1 $every|" \
         -e "${integration:+s|^integration:.*|integration: $integration|}" \
-        "$source_case" >"$case_file"
+        "$source_case"; } >"$case_file"
     echo "$name: footing at $v m/s to $settlement m ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
     t=$(seconds)
     "$geoscni" pre "$case_file" -o "$out/$name" -q
@@ -55,7 +58,7 @@ for name in $cases; do
     peak=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) { if ($i ~ /^footing_uz(_m)?$/) u = i; if ($i ~ /^footing_fz(_N)?$/) f = i }; next }
         -$f > m { m = -$f; s = -$u } END { printf "%.2f MN at %.3f m", m / 1e6, s }' "$out/$name/history.csv")
     echo "  $particles particles, $steps steps; pre $pre s, solve $solve s, post $post s; peak footing load $peak"
-    grep -E "quasi-static|warning" "$out/$name/solve.log" | sed 's/^/  /' || true
+    grep -E "quasi-static|warning|^reference updates|^failed particles" "$out/$name/solve.log" | sed "s/^/  /" || true
     # where it ended: failed particles, the energy balance over the work,
     # and the particles thrown up (u_z > 0.5 m at the last frame: the lip
     # of docs/paper_slopes.md)

@@ -958,19 +958,18 @@ static int read_plane_strain(struct reader *r, const yaml_node_t *root,
     return GSN_OK;
 }
 
-/* reference_update: off (the default), on, or {strain, volume: [min, max],
- * every, min_steps} (docs/solver.md, "Large deformation"); with large
- * kinematics and nodal integration only. */
+/* reference_update: on, off or {strain, volume: [min, max], every,
+ * min_steps} (docs/solver.md, "Large deformation"); with large kinematics
+ * and nodal integration only. Absent, it is on where it applies
+ * (gsn_case_reference_update_default). */
 static int read_reference_update(struct reader *r, const yaml_node_t *root,
                                  struct gsn_case *c)
 {
     static const char *const keys[] = {"strain", "volume", "every", "min_steps",
                                        NULL};
     static const char *const words[] = {"off", "on", NULL};
-    /* off unless asked: docs/solver.md, "Large deformation", says where
-     * updates still make runs unstable (the footing edge) */
-    c->reference_update = 0;
     yaml_node_t *node = mapping_find(r, root, "reference_update");
+    c->reference_update = gsn_case_reference_update_default(c);
     if (!node)
         return GSN_OK;
     c->reference_update_line = node_line(node);
@@ -1216,6 +1215,15 @@ double gsn_case_slowest_wave(const struct gsn_case *c, int shear)
         slowest = fmin(slowest, sqrt(modulus / m->saturated_density));
     }
     return slowest;
+}
+
+int gsn_case_reference_update_default(const struct gsn_case *c)
+{
+    int damage = 0;
+    for (int k = 0; k < c->material_count; ++k)
+        damage |= c->materials[k].has_damage;
+    return !c->small_strain && c->integration != GSN_INTEGRATION_GAUSS &&
+           c->stabilization != GSN_STABILIZATION_MSCNI && !damage;
 }
 
 int gsn_case_find_material(const struct gsn_case *c, const char *volume)

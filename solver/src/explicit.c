@@ -43,6 +43,7 @@ enum { LANCZOS_STEPS = 120 };
 /* The sums of a step over the particles (or points) of one range. */
 struct gsn_step_sums {
     double dissipated, external, kinetic, internal; /* J */
+    double released;     /* J: the work of the released force (release_force) */
     int first_nonfinite; /* the lowest particle whose velocity is not
                             finite, or -1 */
 };
@@ -89,7 +90,8 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
                         e->reference_gradient,
                         e->block_distortion,
                         e->contact_force,
-                        e->pore_pressure};
+                        e->pore_pressure,
+                        e->release_force};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         free(arrays[i]);
     free(e->point_failed);
@@ -1229,16 +1231,18 @@ static struct gsn_step_sums step_loop(struct gsn_explicit *e, int count,
                                       step_range_fn range)
 {
     int pieces = (count + SUM_PIECE - 1) / SUM_PIECE;
-    struct gsn_step_sums *partial = e->step_partial, total = {0, 0, 0, 0, -1};
+    struct gsn_step_sums *partial = e->step_partial,
+                         total = {0, 0, 0, 0, 0, -1};
 #pragma omp parallel for schedule(static) if (parallel_worth(count))
     for (int k = 0; k < pieces; ++k) {
         int i0 = k * SUM_PIECE,
             i1 = i0 + SUM_PIECE < count ? i0 + SUM_PIECE : count;
-        partial[k] = (struct gsn_step_sums){0, 0, 0, 0, -1};
+        partial[k] = (struct gsn_step_sums){0, 0, 0, 0, 0, -1};
         range(e, i0, i1, &partial[k]);
     }
     for (int k = 0; k < pieces; ++k) {
         total.dissipated += partial[k].dissipated;
+        total.released += partial[k].released;
         total.external += partial[k].external;
         total.kinetic += partial[k].kinetic;
         total.internal += partial[k].internal;
@@ -1272,6 +1276,13 @@ static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
         for (int k = 0; k < 3; ++k) {
             int at = 3 * i + k;
             double f = e->f_ext[at] + contact_force(e, at) - e->f_int[at];
+            if (e->release_force) {
+                double g = e->release_force[at];
+                f += e->release_next * g;
+                sums->released +=
+                    0.5 * (e->release_factor + e->release_next) * g *
+                    (e->displacement[at] - e->previous_displacement[at]);
+            }
             if (e->damping_local > 0.0) {
                 double damping = 0.0;
                 if (!(e->constrained[i] & (1 << k))) {
@@ -1372,7 +1383,20 @@ int gsn_explicit_step(struct gsn_explicit *e)
         legacy_boundary_term(e);
     phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
 
-    double dissipated = step_loop(e, n, new_accelerations).dissipated;
+    if (e->release_force)
+        e->release_next =
+            fmax(0.0, 1.0 - (double)(e->step + 1 - e->release_start) /
+                                (double)e->release_steps);
+    struct gsn_step_sums forces = step_loop(e, n, new_accelerations);
+    e->release_work += forces.released;
+    if (e->release_force) {
+        e->release_factor = e->release_next;
+        if (e->release_factor == 0.0) {
+            free(e->release_force);
+            e->release_force = NULL;
+        }
+    }
+    double dissipated = forces.dissipated;
     phase_end(e, GSN_PHASE_UPDATES, &mark);
     if (e->constraints)
         GSN_CALL(gsn_constraints_apply(
@@ -1830,6 +1854,54 @@ int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
     return rc;
 }
 
+/* The acceleration of every coefficient from the loads and the internal
+ * force alone, a = M^-1 (f_ext + f_contact - f_int + released force). */
+static void undamped_acceleration(const struct gsn_explicit *e, double *a)
+{
+    for (int i = 0; i < e->particle_count; ++i)
+        for (int k = 0; k < 3; ++k) {
+            int at = 3 * i + k;
+            double f = e->f_ext[at] + contact_force(e, at) - e->f_int[at];
+            if (e->release_force)
+                f += e->release_factor * e->release_force[at];
+            a[at] = k == e->held_axis ? 0.0 : f / e->mass[i];
+        }
+}
+
+int gsn_explicit_release_unbalanced(struct gsn_explicit *to,
+                                    const struct gsn_explicit *from, long steps)
+{
+    const int n = to->particle_count;
+    const size_t n3 = 3 * (size_t)n;
+    double *a = malloc(sizeof(double) * n3),
+           *field = malloc(sizeof(double) * n3);
+    double *target = calloc(n3, sizeof(double));
+    int rc = GSN_OK;
+    GSN_CHECK_GOTO(a && field && target, rc, GSN_ERR_MEMORY, done,
+                   "cannot allocate %zu values", 3 * n3);
+    undamped_acceleration(from, a);
+    gsn_explicit_particle_field(from, a, field);
+    int iterations = 0;
+    GSN_CALL_GOTO(gsn_explicit_interpolate(to, field, target, &iterations), rc,
+                  done);
+    free(to->release_force);
+    to->release_force = NULL;
+    to->release_factor = to->release_next = 1.0;
+    undamped_acceleration(to, a);
+    for (size_t at = 0; at < n3; ++at)
+        target[at] = to->mass[at / 3] * (target[at] - a[at]);
+    to->release_force = target;
+    target = NULL;
+    to->release_start = to->step;
+    to->release_steps = steps > 0 ? steps : 1;
+    GSN_CALL_GOTO(gsn_explicit_settle(to), rc, done);
+done:
+    free(a);
+    free(field);
+    free(target);
+    return rc;
+}
+
 int gsn_explicit_carry_over(struct gsn_explicit *to,
                             const struct gsn_explicit *from)
 {
@@ -1877,6 +1949,7 @@ int gsn_explicit_carry_over(struct gsn_explicit *to,
     to->internal_energy = from->internal_energy;
     to->external_work = from->external_work;
     to->damping_work = from->damping_work;
+    to->release_work = from->release_work;
     to->kinetic_energy = from->kinetic_energy;
     to->allow_failure = from->allow_failure;
     to->distortion_strain = 0.0;

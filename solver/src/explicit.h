@@ -201,6 +201,16 @@ struct gsn_explicit {
     double *contact_force;
     double contact_resultant[GSN_MAX_BOUNDARIES][3];
     int contact_count;
+
+    /* The force a reference update leaves unbalanced, released gradually
+     * (gsn_explicit_release_unbalanced): applied at release_factor times
+     * its full value, which falls linearly to 0 over release_steps steps;
+     * NULL once released. Its work (J, since the first reference) is the
+     * update's, not the loads'. */
+    double *release_force; /* n x 3, N */
+    long release_start, release_steps;
+    double release_factor, release_next; /* of the present and next step */
+    double release_work;
 };
 
 /* Sets up the loop at rest (d = v = a = 0, zero stress, F = I). The lumped
@@ -227,6 +237,21 @@ void gsn_explicit_set_constraints(struct gsn_explicit *e,
  * present state. */
 int gsn_explicit_set_contact(struct gsn_explicit *e,
                              const struct gsn_contact *contact);
+
+/* Releases gradually the force by which `to`, just carried over from
+ * `from` and settled, is out of balance: the particles' acceleration from
+ * the loads and the internal force (no damping, no supports) on from's
+ * discretization, interpolated onto to's coefficients, less to's own, times
+ * the masses, added to to's force and faded out over `steps` steps. An
+ * update changes the discrete operator, not the state: on a nonuniform
+ * stress the new cells' forces differ from the old ones by a noise of the
+ * particles' scale, which applied at once kicks every particle (measured
+ * on the coarse Slope I: the acceleration's rms 5 to 40 times its value
+ * before) and the damage, which sums |d eps| (eq. (7)), spreads with the
+ * ringing. Then settles to again. */
+int gsn_explicit_release_unbalanced(struct gsn_explicit *to,
+                                    const struct gsn_explicit *from,
+                                    long steps);
 
 /* Carries the state of `from` onto `to`, a loop built (gsn_explicit_create)
  * on the current positions of from's particles, X_ref + u(X_ref): the

@@ -14,6 +14,14 @@
  * the union of positive pieces. */
 #define GSN_REFERENCE_BODY_QUALITY 1e-6
 
+/* The force an update leaves unbalanced is released over this many steps
+ * (gsn_explicit_release_unbalanced). On the coarse Slope I with updates
+ * (14 to 16) the particles with damage above 0.1 at 1 m: 85% applied at
+ * once, 51% released over 100 steps, 48% over 500 (31% without updates):
+ * the ringing of the kick is gone within 100 steps, what stays is the
+ * new discretization's own equilibrium. */
+#define RELEASE_STEPS 100
+
 const char *gsn_reference_reason_name(enum gsn_reference_reason reason)
 {
     switch (reason) {
@@ -260,8 +268,11 @@ static int rebuild(struct gsn_reference *r, const double *x,
         GSN_CALL_GOTO(gsn_explicit_set_point_mass(loop, old->point_mass), rc,
                       fail);
     add_tractions(loop, cells, r->c);
-    if (carry)
+    if (carry) {
         GSN_CALL_GOTO(gsn_explicit_settle(loop), rc, fail);
+        GSN_CALL_GOTO(gsn_explicit_release_unbalanced(loop, old, RELEASE_STEPS),
+                      rc, fail);
+    }
     report->seconds_state = omp_get_wtime() - t_state;
     /* S = C M^-1 C^T is factorized at the first correction, in the settle:
      * counted with the constraints */
@@ -362,6 +373,11 @@ int gsn_reference_update(struct gsn_reference *r,
     if (out)
         *out = report;
     return GSN_OK;
+}
+
+double gsn_reference_energy(const struct gsn_reference *r)
+{
+    return r->energy_jump + r->loop->release_work;
 }
 
 int gsn_reference_restore(struct gsn_reference *r, const double *position,

@@ -136,6 +136,11 @@ int gsn_reference_update(struct gsn_reference *r,
  * checkpoint (n x 3, m) taken at time (s) and step, with its body (NULL:
  * the pre mesh's) and the first reference's masses; the caller then loads
  * the checkpoint's state. */
+/* The energy the updates added (J): the kinetic energy of their jumps and
+ * the work of the forces they left unbalanced while those are released
+ * (gsn_explicit_release_unbalanced); the energy balance takes it out. */
+double gsn_reference_energy(const struct gsn_reference *r);
+
 int gsn_reference_restore(struct gsn_reference *r, const double *position,
                           const struct gsn_body *body, double time, long step,
                           int update_count, double energy_jump);

@@ -313,7 +313,7 @@ static int write_history_row(struct run *r)
     fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g,%d\n",
             e->kinetic_energy, e->internal_energy, e->external_work, max_damage,
             e->damping_work, r->reference->update_count,
-            r->reference->energy_jump, e->dead_count);
+            gsn_reference_energy(r->reference), e->dead_count);
     free(multiplier);
     GSN_CALL(history_flush(r));
     return GSN_OK;
@@ -376,6 +376,63 @@ static int checkpoint_transfer(struct run *r, int write, double energy[4])
     return GSN_OK;
 }
 
+/* The release of the last update's unbalanced force (explicit.h), in the
+ * checkpoint; zeros once released. */
+static int write_release(struct run *r, hid_t group)
+{
+    const struct gsn_explicit *e = r->reference->loop;
+    const struct gsn_dataset_info *d =
+        &gsn_checkpoint_reference_datasets[GSN_CHECKPOINT_RELEASE_FORCE];
+    size_t n = (size_t)e->particle_count;
+    double *zeros = e->release_force ? NULL : calloc(3 * n + 1, sizeof(double));
+    GSN_CHECK(e->release_force || zeros, GSN_ERR_MEMORY, "out of memory");
+    int rc = gsn_h5_write(r->results, d, n,
+                          e->release_force ? e->release_force : zeros);
+    free(zeros);
+    GSN_CALL(rc);
+    GSN_CALL(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_RELEASE_START,
+                                   (int)e->release_start));
+    GSN_CALL(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_RELEASE_STEPS,
+                                   (int)e->release_steps));
+    GSN_CALL(
+        gsn_h5_attr_write_double(group, GSN_CHECKPOINT_ATTR_RELEASE_FACTOR,
+                                 e->release_force ? e->release_factor : 0.0));
+    return gsn_h5_attr_write_double(group, GSN_CHECKPOINT_ATTR_RELEASE_WORK,
+                                    e->release_work);
+}
+
+/* Reads what write_release wrote into the loop just restored. */
+static int read_release(struct run *r, hid_t group)
+{
+    struct gsn_explicit *e = r->reference->loop;
+    if (H5Aexists(group, GSN_CHECKPOINT_ATTR_RELEASE_WORK) <= 0)
+        return GSN_OK;
+    int start = 0, steps = 0;
+    double factor = 0.0;
+    GSN_CALL(
+        gsn_h5_attr_read_int(group, GSN_CHECKPOINT_ATTR_RELEASE_START, &start));
+    GSN_CALL(
+        gsn_h5_attr_read_int(group, GSN_CHECKPOINT_ATTR_RELEASE_STEPS, &steps));
+    GSN_CALL(gsn_h5_attr_read_double(group, GSN_CHECKPOINT_ATTR_RELEASE_FACTOR,
+                                     &factor));
+    GSN_CALL(gsn_h5_attr_read_double(group, GSN_CHECKPOINT_ATTR_RELEASE_WORK,
+                                     &e->release_work));
+    free(e->release_force);
+    e->release_force = NULL;
+    if (factor <= 0.0)
+        return GSN_OK;
+    size_t n = (size_t)e->particle_count;
+    e->release_force = malloc(sizeof(double) * 3 * (n ? n : 1));
+    GSN_CHECK(e->release_force, GSN_ERR_MEMORY, "out of memory");
+    e->release_start = start;
+    e->release_steps = steps;
+    e->release_factor = e->release_next = factor;
+    return gsn_h5_read(
+        r->results,
+        &gsn_checkpoint_reference_datasets[GSN_CHECKPOINT_RELEASE_FORCE], n,
+        e->release_force);
+}
+
 /* Writes the reference configuration of the last update into the
  * checkpoint group: its positions and, where the body was made again, its
  * tetrahedra; the update count, time, step and added energy. */
@@ -402,6 +459,7 @@ static int write_checkpoint_reference(struct run *r, hid_t group)
                               ref->body.face));
         r->body_written = ref->remesh_count;
     }
+    GSN_CALL(write_release(r, group));
     GSN_CALL(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_UPDATES,
                                    ref->update_count));
     GSN_CALL(gsn_h5_attr_write_int(group, GSN_CHECKPOINT_ATTR_REMESHES,
@@ -494,6 +552,7 @@ static int read_checkpoint_reference(struct run *r, hid_t group)
                   rc, done);
     ref->remesh_count = remeshes;
     r->body_written = remeshes;
+    GSN_CALL_GOTO(read_release(r, group), rc, done);
 done:
     free(position);
     gsn_body_free(&body);
@@ -848,7 +907,7 @@ static int check_energy(struct run *r)
                         fmax(fabs(e->external_work), e->damping_work));
     /* the kinetic energy the reference updates added is not work done */
     double balance = e->kinetic_energy + e->internal_energy + e->damping_work -
-                     e->external_work - r->reference->energy_jump;
+                     e->external_work - gsn_reference_energy(r->reference);
     double check_from =
         fmax(r->c->time_ramp, QUASI_STATIC_FIRST * r->c->time_end);
     if (e->time >= check_from && e->internal_energy > 0.0 &&
@@ -959,11 +1018,13 @@ static void print_updates(const struct run *r, double seconds)
     const struct gsn_reference *ref = r->reference;
     if (ref->update_count > 0)
         printf("reference updates: %d (%d with the body's tetrahedra made "
-               "again), %.3g s, %.1f%% of the solve; the kinetic energy "
-               "they added: %.4g J\n",
+               "again), %.3g s, %.1f%% of the solve; the energy they "
+               "added: %.4g J (kinetic %.4g J, released forces' work "
+               "%.4g J)\n",
                ref->update_count, ref->remesh_count, ref->seconds,
                seconds > 0.0 ? 100.0 * ref->seconds / seconds : 0.0,
-               ref->energy_jump);
+               gsn_reference_energy(ref), ref->energy_jump,
+               ref->loop->release_work);
     if (ref->deferred_count > 0)
         printf("reference updates deferred: %d (the new discretization "
                "failed its checks; the last: %s)\n",
@@ -1584,9 +1645,8 @@ static const char *method_text(const struct gsn_case *c, char *text,
  * (KLU's and the copy the steps read), both counted on their pattern
  * (gsn_constraints_size_estimate): a slab whose faces are all held has
  * most of its memory there. The rows of the shape functions grow with the
- * support's volume (and, taken as twice, with the quadratic basis);
- * reference updates hold two discretizations at once (1.93 times
- * measured). */
+ * support's volume (and, taken as twice, with the quadratic basis). Of the
+ * first reference: an update holds two at once (check_memory). */
 /* The kernels that cover each particle, summed over the particles: the
  * length of the shape-function rows at the particles, which the smoothed
  * gradients' rows follow (a thin slab has more of them per particle than
@@ -1648,8 +1708,7 @@ static int memory_estimate(const struct gsn_case *c, const struct gsn_model *m,
                           fmax(1.0, (double)m->particle_count) * 36.0 * scale +
                       700.0 * m->particle_count;
     double running = points * per_point * scale + held;
-    *bytes =
-        (80e6 + fmax(building, running)) * (c->reference_update ? 2.0 : 1.0);
+    *bytes = 80e6 + fmax(building, running);
     return GSN_OK;
 }
 
@@ -1658,10 +1717,16 @@ static int check_memory(const struct run *r)
 {
     const char *source = NULL;
     char method[64];
-    double need = 0.0;
-    GSN_CALL(memory_estimate(r->c, &r->model, &need));
+    double first = 0.0;
+    GSN_CALL(memory_estimate(r->c, &r->model, &first));
+    /* an update holds two discretizations at once (1.93 times measured) */
+    double need = r->c->reference_update ? 2.0 * first : first;
     double available = gsn_memory_available(&source);
-    if (!r->options->quiet)
+    if (!r->options->quiet && need > first)
+        printf("solver: about %.0f MB of memory needed, %.0f MB while the "
+               "reference is updated (%.0f MB available: %s)\n",
+               first / 1e6, need / 1e6, available / 1e6, source);
+    else if (!r->options->quiet)
         printf("solver: about %.0f MB of memory needed (%.0f MB available: "
                "%s)\n",
                need / 1e6, available / 1e6, source);
@@ -1676,6 +1741,34 @@ static int check_memory(const struct run *r)
               r->c->reference_update ? ", reference updates" : "",
               available / 1e6, source);
     return GSN_OK;
+}
+
+/* Whether the reference follows the body, and what triggers an update
+ * (docs/solver.md, "Reference-configuration updates"). */
+static void print_update_setting(const struct gsn_case *c)
+{
+    const char *given = c->reference_update_line ? "" : ", the default";
+    if (c->small_strain || c->integration == GSN_INTEGRATION_GAUSS)
+        return;
+    if (!c->reference_update) {
+        printf("reference updates: off%s%s\n", given,
+               c->reference_update_line ? ""
+               : c->stabilization == GSN_STABILIZATION_MSCNI
+                   ? " with MSCNI (its sub-cells stiffen under plastic flow "
+                     "on an updated reference)"
+                   : " with damage (it sums |d eps|, and with it the noise "
+                     "of each new discretization)");
+        return;
+    }
+    printf("reference updates: on%s: when a particle's |E| since the last "
+           "passes %g or det F leaves [%g, %g]",
+           given, c->reference_strain, c->reference_volume[0],
+           c->reference_volume[1]);
+    if (c->reference_every > 0.0)
+        printf(", or every %g s", c->reference_every);
+    printf(", %d steps apart at least ('reference_update: off' keeps the "
+           "first reference)\n",
+           c->reference_min_steps);
 }
 
 /* The soils on the particles and the water's pore pressure, a line each
@@ -1746,8 +1839,10 @@ static int run_setup(struct run *r)
                method_text(c, method, sizeof method),
                gsn_quadrature_bytes(r->reference->quadrature) / 1e6,
                now_seconds() - t0, r->total_steps);
-    if (!r->options->quiet && !r->options->setup_warned)
+    if (!r->options->quiet && !r->options->setup_warned) {
+        print_update_setting(c);
         print_site(r);
+    }
     if (r->reference->quadrature->held_fallback_count > 0 &&
         !r->options->setup_warned)
         fprintf(stderr,

@@ -230,6 +230,23 @@ int main(void)
     TEST_INT(c.material.has_plasticity, 0);
     TEST_INT(c.boundary_count, 0);
     TEST_NEAR(c.gravity[0] + c.gravity[1] + c.gravity[2], 0.0, 0.0);
+    /* reference updates: on by default with large kinematics and nodal
+     * integration, off with MSCNI, damage, small kinematics or Gauss */
+    TEST_INT(c.reference_update, 1);
+    TEST_INT(c.reference_min_steps, GSN_DEFAULT_REFERENCE_MIN_STEPS);
+    struct gsn_case variant = c;
+    variant.stabilization = GSN_STABILIZATION_NSNI;
+    TEST_INT(gsn_case_reference_update_default(&variant), 1);
+    variant.stabilization = GSN_STABILIZATION_MSCNI;
+    TEST_INT(gsn_case_reference_update_default(&variant), 0);
+    variant = c;
+    variant.small_strain = 1;
+    TEST_INT(gsn_case_reference_update_default(&variant), 0);
+    variant = c;
+    variant.integration = GSN_INTEGRATION_GAUSS;
+    TEST_INT(gsn_case_reference_update_default(&variant), 0);
+    TEST_INT(gsn_case_load("cases/valid.yaml", &variant), GSN_OK);
+    TEST_INT(variant.reference_update, 0); /* the paper's soil: damage */
 
     test_mohr_coulomb();
     test_water_table();

@@ -62,8 +62,9 @@ awk -F, '
             split(rows[r], v, ",")
             k = v[col["kinetic_energy_J"]]; w = v[col["internal_energy_J"]]
             d = v[col["damping_work_J"]]; x = v[col["external_work_J"]]
+            u = v[col["update_energy_J"]]
             scale = x > 0.01 * work ? x : 0.01 * work
-            gap = k + w + d - x
+            gap = k + w + d - x - u
             if (gap > 1e-3 * scale || -gap > 1e-3 * scale) {
                 printf "energy balance %.3g of the work at t = %s s\n", gap / scale, v[1]; bad++
             }

@@ -34,9 +34,12 @@ enum { GSN_MAX_OUTPUT_TIMES = 1000 };
 #define GSN_DEFAULT_REFERENCE_STRAIN 0.2
 #define GSN_DEFAULT_REFERENCE_VOLUME_MIN 0.7
 #define GSN_DEFAULT_REFERENCE_VOLUME_MAX 1.4
-/* ... and at least this many steps pass between two updates, which bounds
- * their cost: an update costs some 100 to 300 steps (docs/solver.md). */
-#define GSN_DEFAULT_REFERENCE_MIN_STEPS 500
+/* ... and at least this many steps pass between two updates. An update
+ * costs some 200 to 250 steps (docs/solver.md); the strain spaces them:
+ * 200 to 2,000 steps apart on the paper's slopes, 100 to 260 at the corner
+ * of a footing pushed one width deep, where 500 lets |E| reach 1 to 3
+ * between updates and the run break up at 0.34 B. */
+#define GSN_DEFAULT_REFERENCE_MIN_STEPS 20
 #define GSN_DEFAULT_MAX_PARTICLES 5000000 /* more needs --force */
 /* The geostatic stage (docs/solver.md, "The soil's own weight"): at rest
  * when the unbalanced force is this fraction of the load, relaxed with this
@@ -314,6 +317,15 @@ double gsn_height(const struct gsn_case *c, const double x[3]);
  * sqrt(mu / rho) (shear 1) or P waves sqrt((K + 4 mu / 3) / rho) (0);
  * the period and transit times of the body's response. */
 double gsn_case_slowest_wave(const struct gsn_case *c, int shear);
+
+/* Whether reference-configuration updates are on when the case file does
+ * not say: with large kinematics and nodal integration, except with MSCNI,
+ * whose sub-cells stiffen under plastic flow on an updated reference, and
+ * with damage, which sums |d eps| (seed paper eq. (7)) and so the noise of
+ * each new discretization: on the coarse Slope I 51% of the particles end
+ * with damage above 0.1 with updates, 31% without (docs/solver.md,
+ * "Reference-configuration updates"). */
+int gsn_case_reference_update_default(const struct gsn_case *c);
 
 /* Index into c->materials of the material of a gmsh physical volume, or -1
  * (material: gives every volume its one material: 0). */

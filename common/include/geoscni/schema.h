@@ -200,12 +200,23 @@ struct gsn_dataset_info {
       "the body's tetrahedra as particle indices, where made again")           \
     X(GSN_CHECKPOINT_BODY_FACE, "checkpoint/body_face", GSN_H5_INT, 4, "1",    \
       "what each face of the body's tetrahedra lies on, as "                   \
-      "mesh/tetrahedron_face")
+      "mesh/tetrahedron_face")                                                 \
+    X(GSN_CHECKPOINT_RELEASE_FORCE, "checkpoint/release_force", GSN_H5_DOUBLE, \
+      3, "N",                                                                  \
+      "the force the last update left unbalanced, at full value, on the "      \
+      "coefficients (0 once released)")
 #define GSN_CHECKPOINT_ATTR_UPDATES "reference_updates"
 #define GSN_CHECKPOINT_ATTR_REFERENCE_TIME "reference_time"
 #define GSN_CHECKPOINT_ATTR_REFERENCE_STEP "reference_step"
 #define GSN_CHECKPOINT_ATTR_UPDATE_ENERGY "reference_update_energy"
 #define GSN_CHECKPOINT_ATTR_REMESHES "body_remeshes"
+/* The release of the last update's unbalanced force: its start step, its
+ * length in steps, the present factor, and the work of the released forces
+ * so far (J); absent in checkpoints of before 2026-12-04, which had none */
+#define GSN_CHECKPOINT_ATTR_RELEASE_START "release_start"
+#define GSN_CHECKPOINT_ATTR_RELEASE_STEPS "release_steps"
+#define GSN_CHECKPOINT_ATTR_RELEASE_FACTOR "release_factor"
+#define GSN_CHECKPOINT_ATTR_RELEASE_WORK "release_work"
 /* Deferred updates (their count, the run of them since the last update and
  * the step of the last attempt): absent in checkpoints of before 2026-12-03,
  * which had none */
