@@ -503,6 +503,17 @@ static inline double contact_force(const struct gsn_explicit *e, int i)
     return e->contact ? e->contact_force[i] : 0.0;
 }
 
+/* Component i of the force that accelerates the coefficients before the
+ * damping and the supports: the loads, the contact, less the internal
+ * force, and the released force of the last update at `release` times its
+ * full value. */
+static inline double net_force(const struct gsn_explicit *e, int i,
+                               double release)
+{
+    double f = e->f_ext[i] + contact_force(e, i) - e->f_int[i];
+    return e->release_force ? f + release * e->release_force[i] : f;
+}
+
 /* Component i of the external force on the body that W_ext integrates:
  * the dead loads, the contact and the reactions. */
 static inline double external_force(const struct gsn_explicit *e, int i)
@@ -1275,14 +1286,12 @@ static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
     for (int i = i0; i < i1; ++i) {
         for (int k = 0; k < 3; ++k) {
             int at = 3 * i + k;
-            double f = e->f_ext[at] + contact_force(e, at) - e->f_int[at];
-            if (e->release_force) {
-                double g = e->release_force[at];
-                f += e->release_next * g;
+            double f = net_force(e, at, e->release_next);
+            if (e->release_force)
                 sums->released +=
-                    0.5 * (e->release_factor + e->release_next) * g *
+                    0.5 * (e->release_factor + e->release_next) *
+                    e->release_force[at] *
                     (e->displacement[at] - e->previous_displacement[at]);
-            }
             if (e->damping_local > 0.0) {
                 double damping = 0.0;
                 if (!(e->constrained[i] & (1 << k))) {
@@ -1854,17 +1863,16 @@ int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
     return rc;
 }
 
-/* The acceleration of every coefficient from the loads and the internal
- * force alone, a = M^-1 (f_ext + f_contact - f_int + released force). */
+/* The acceleration of every coefficient from net_force alone (no damping,
+ * no supports) at the present step. */
 static void undamped_acceleration(const struct gsn_explicit *e, double *a)
 {
     for (int i = 0; i < e->particle_count; ++i)
         for (int k = 0; k < 3; ++k) {
             int at = 3 * i + k;
-            double f = e->f_ext[at] + contact_force(e, at) - e->f_int[at];
-            if (e->release_force)
-                f += e->release_factor * e->release_force[at];
-            a[at] = k == e->held_axis ? 0.0 : f / e->mass[i];
+            a[at] = k == e->held_axis
+                        ? 0.0
+                        : net_force(e, at, e->release_factor) / e->mass[i];
         }
 }
 

@@ -248,7 +248,7 @@ int gsn_explicit_set_contact(struct gsn_explicit *e,
  * particles' scale, which applied at once kicks every particle (measured
  * on the coarse Slope I: the acceleration's rms 5 to 40 times its value
  * before) and the damage, which sums |d eps| (eq. (7)), spreads with the
- * ringing. Then settles to again. */
+ * ringing. Then settles `to` again with that force. */
 int gsn_explicit_release_unbalanced(struct gsn_explicit *to,
                                     const struct gsn_explicit *from,
                                     long steps);
