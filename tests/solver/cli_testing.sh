@@ -21,6 +21,14 @@ stop_at_rows() {
     wait "$1"
     stopped_status=$?
 }
+# PID runs with libgomp's short spin (app/geoscni.c, exec_with_short_spin)
+# unless the wait policy was given; WHAT names it in the message
+check_short_spin() {
+    if [ -z "${OMP_WAIT_POLICY:-}${GOMP_SPINCOUNT:-}" ] && [ -r /proc/$1/environ ]; then
+        tr '\0' '\n' </proc/$1/environ | grep -qx 'GOMP_SPINCOUNT=3000' ||
+            fail "$2 does not run with GOMP_SPINCOUNT=3000"
+    fi
+}
 finish() {
     echo "$failures failures"
     [ "$failures" -eq 0 ]

@@ -153,12 +153,7 @@ while [ ! -s "$out/int/history.csv" ] && [ $i -lt 300 ]; do
     sleep 0.1
     i=$((i + 1))
 done
-# the solver runs with libgomp's short spin (app/geoscni.c,
-# exec_with_short_spin) unless the wait policy was given
-if [ -z "${OMP_WAIT_POLICY:-}${GOMP_SPINCOUNT:-}" ] && [ -r /proc/$solver/environ ]; then
-    tr '\0' '\n' </proc/$solver/environ | grep -qx 'GOMP_SPINCOUNT=3000' ||
-        fail "the solver does not run with GOMP_SPINCOUNT=3000"
-fi
+check_short_spin $solver "the solver"
 sleep 1
 kill -TERM $solver
 wait $solver
