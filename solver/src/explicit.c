@@ -1714,12 +1714,14 @@ int gsn_explicit_settle(struct gsn_explicit *e)
     return GSN_OK;
 }
 
-/* gsn_explicit_interpolate: at most this many BiCGSTAB iterations, to a
- * residual of INTERPOLATE_TOLERANCE of the values (max norm). */
-enum { INTERPOLATE_MAX_ITERATIONS = 1000 };
-#define INTERPOLATE_TOLERANCE 1e-13
+/* gsn_explicit_interpolate: at most this many conjugate-gradient
+ * iterations, to a residual of INTERPOLATE_TOLERANCE of the right-hand side
+ * (max norm). */
+#define INTERPOLATE_REGULARIZATION GSN_INTERPOLATE_REGULARIZATION
+enum { INTERPOLATE_MAX_ITERATIONS = 2000 };
+#define INTERPOLATE_TOLERANCE 1e-12
 
-/* y = Lambda x for one component (stride 3 in x and y):
+/* y = Lambda x for one component:
  * y_J = sum_I Psi_I(X_J) x_I. */
 static void lambda_apply(const struct gsn_shape_rows *rows, int n,
                          const double *x, double *y)
@@ -1761,66 +1763,117 @@ static double max_abs(const double *a, int n)
     return m;
 }
 
-/* Solves Lambda x = b for one component by BiCGSTAB (van der Vorst 1992)
- * with the diagonal Psi_J(X_J) as preconditioner, from x = b. work holds
- * 8 n + pieces doubles. Returns the iterations, or -1 without
- * convergence; *residual gets the last max-norm residual. */
-static int interpolate_component(const struct gsn_shape_rows *rows, int n,
-                                 const double *diagonal, const double *b,
-                                 double *x, double *work, double *residual)
+/* The rows of Lambda^T: for each I, Psi_I(X_J) over the J that see it, in
+ * the order of J (lambda_apply on them gives Lambda^T x, the same bits on
+ * any thread count). */
+static int lambda_transpose(const struct gsn_shape_rows *rows, int n,
+                            struct gsn_shape_rows *columns)
 {
-    double *r = work, *r0 = r + n, *p = r0 + n, *v = p + n, *s = v + n;
-    double *t = s + n, *y = t + n, *z = y + n, *partial = z + n;
-    double goal = INTERPOLATE_TOLERANCE * max_abs(b, n);
-    memcpy(x, b, sizeof(double) * (size_t)n);
-    lambda_apply(rows, n, x, r);
-    for (int i = 0; i < n; ++i)
-        r[i] = b[i] - r[i];
-    *residual = max_abs(r, n);
-    if (*residual <= goal)
-        return 0;
-    memcpy(r0, r, sizeof(double) * (size_t)n);
-    memset(p, 0, sizeof(double) * (size_t)n);
-    memset(v, 0, sizeof(double) * (size_t)n);
-    double rho = 1.0, alpha = 1.0, omega = 1.0;
-    for (int iteration = 1; iteration <= INTERPOLATE_MAX_ITERATIONS;
-         ++iteration) {
-        double rho1 = dot_ordered(r0, r, n, partial);
-        if (rho1 == 0.0 || omega == 0.0)
-            return -1;
-        double beta = rho1 / rho * alpha / omega;
-        rho = rho1;
-        for (int i = 0; i < n; ++i)
-            p[i] = r[i] + beta * (p[i] - omega * v[i]);
-        for (int i = 0; i < n; ++i)
-            y[i] = p[i] / diagonal[i];
-        lambda_apply(rows, n, y, v);
-        double r0v = dot_ordered(r0, v, n, partial);
-        if (r0v == 0.0)
-            return -1;
-        alpha = rho / r0v;
-        for (int i = 0; i < n; ++i)
-            s[i] = r[i] - alpha * v[i];
-        if (max_abs(s, n) <= goal) {
-            for (int i = 0; i < n; ++i)
-                x[i] += alpha * y[i];
-            *residual = max_abs(s, n);
-            return iteration;
+    int entries = rows->offset[n];
+    columns->row_count = n;
+    columns->offset = calloc((size_t)n + 1, sizeof(int));
+    columns->index = malloc(sizeof(int) * (size_t)(entries ? entries : 1));
+    columns->value = malloc(sizeof(double) * (size_t)(entries ? entries : 1));
+    int *next = malloc(sizeof(int) * (size_t)(n ? n : 1));
+    if (!columns->offset || !columns->index || !columns->value || !next) {
+        free(next);
+        return gsn_error_raise(GSN_ERR_MEMORY, __FILE__, __LINE__, __func__,
+                               "cannot allocate %d entries", entries);
+    }
+    for (int k = 0; k < entries; ++k)
+        ++columns->offset[rows->index[k] + 1];
+    for (int I = 0; I < n; ++I)
+        columns->offset[I + 1] += columns->offset[I];
+    memcpy(next, columns->offset, sizeof(int) * (size_t)n);
+    for (int J = 0; J < n; ++J)
+        for (int k = rows->offset[J]; k < rows->offset[J + 1]; ++k) {
+            int at = next[rows->index[k]]++;
+            columns->index[at] = J;
+            columns->value[at] = rows->value[k];
         }
-        for (int i = 0; i < n; ++i)
-            z[i] = s[i] / diagonal[i];
-        lambda_apply(rows, n, z, t);
-        double tt = dot_ordered(t, t, n, partial);
-        omega = tt > 0.0 ? dot_ordered(t, s, n, partial) / tt : 0.0;
-        for (int i = 0; i < n; ++i) {
-            x[i] += alpha * y[i] + omega * z[i];
-            r[i] = s[i] - omega * t[i];
+    free(next);
+    return GSN_OK;
+}
+
+/* The weights of the interpolation: W, the particles' masses (at the
+ * values), and M, the lumped masses (at the coefficients), M = Lambda^T W 1. */
+struct interpolation_weights {
+    const double *particle; /* W */
+    const double *lumped;   /* M */
+};
+
+/* A x = (Lambda^T W Lambda + eps M) x for one component; work holds n. */
+static void normal_apply(const struct gsn_shape_rows *rows,
+                         const struct gsn_shape_rows *columns, int n,
+                         struct interpolation_weights weights, const double *x,
+                         double *work, double *y)
+{
+    lambda_apply(rows, n, x, work);
+    for (int J = 0; J < n; ++J)
+        work[J] *= weights.particle[J];
+    lambda_apply(columns, n, work, y);
+    for (int I = 0; I < n; ++I)
+        y[I] += INTERPOLATE_REGULARIZATION * weights.lumped[I] * x[I];
+}
+
+/* Coefficients c for the values b of one component: c = b + delta with
+ * delta minimizing |Lambda c - b|_W^2 + eps |delta|_M^2 with the momentum
+ * kept, 1^T W Lambda c = 1^T W b. Unconstrained,
+ * (Lambda^T W Lambda + eps M) delta = Lambda^T W (b - Lambda b), by
+ * conjugate gradients with the diagonal as preconditioner from delta = 0;
+ * as A 1 = (1 + eps) M 1 = (1 + eps) Lambda^T W 1 (partition of unity),
+ * the constraint's multiplier adds a uniform shift. work holds 6 n + pieces
+ * doubles. Returns the iterations, or -1 without convergence; *residual
+ * gets the last max-norm residual. */
+static int interpolate_component(const struct gsn_shape_rows *rows,
+                                 const struct gsn_shape_rows *columns, int n,
+                                 struct interpolation_weights weights,
+                                 const double *diagonal, const double *b,
+                                 double *c, double *work, double *residual)
+{
+    double *r = work, *z = r + n, *p = z + n, *q = p + n, *delta = q + n;
+    double *scratch = delta + n, *partial = scratch + n;
+    lambda_apply(rows, n, b, scratch);
+    for (int J = 0; J < n; ++J)
+        scratch[J] = weights.particle[J] * (b[J] - scratch[J]);
+    lambda_apply(columns, n, scratch, r);
+    memset(delta, 0, sizeof(double) * (size_t)n);
+    memset(p, 0, sizeof(double) * (size_t)n); /* beta p is 0 at first */
+    double goal = INTERPOLATE_TOLERANCE * max_abs(r, n);
+    *residual = max_abs(r, n);
+    int iteration = 0;
+    double rz = 0.0;
+    while (*residual > goal) {
+        if (++iteration > INTERPOLATE_MAX_ITERATIONS)
+            return -1;
+        for (int I = 0; I < n; ++I)
+            z[I] = r[I] / diagonal[I];
+        double rz1 = dot_ordered(r, z, n, partial);
+        double beta = iteration > 1 ? rz1 / rz : 0.0;
+        rz = rz1;
+        for (int I = 0; I < n; ++I)
+            p[I] = z[I] + beta * p[I];
+        normal_apply(rows, columns, n, weights, p, scratch, q);
+        double pq = dot_ordered(p, q, n, partial);
+        if (!(pq > 0.0))
+            return -1;
+        double alpha = rz / pq;
+        for (int I = 0; I < n; ++I) {
+            delta[I] += alpha * p[I];
+            r[I] -= alpha * q[I];
         }
         *residual = max_abs(r, n);
-        if (*residual <= goal)
-            return iteration;
     }
-    return -1;
+    for (int I = 0; I < n; ++I)
+        c[I] = b[I] + delta[I];
+    for (int J = 0; J < n; ++J)
+        p[J] = 1.0;
+    double shift = (dot_ordered(weights.particle, b, n, partial) -
+                    dot_ordered(weights.lumped, c, n, partial)) /
+                   dot_ordered(weights.lumped, p, n, partial);
+    for (int I = 0; I < n; ++I)
+        c[I] += shift;
+    return iteration;
 }
 
 int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
@@ -1829,34 +1882,49 @@ int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
     const struct gsn_shape_rows *rows = &e->quadrature->particle_values;
     const int n = e->particle_count;
     const int pieces = (n + SUM_PIECE - 1) / SUM_PIECE;
+    struct gsn_shape_rows columns;
+    memset(&columns, 0, sizeof columns);
     double *work =
-        malloc(sizeof(double) * (11 * (size_t)n + (size_t)pieces + 1));
-    GSN_CHECK(work, GSN_ERR_MEMORY, "cannot allocate %d values", 11 * n);
-    double *diagonal = work, *b = diagonal + n, *x = b + n, *scratch = x + n;
-    int rc = GSN_OK, most = 0;
-    for (int J = 0; J < n; ++J) {
-        diagonal[J] = 1.0;
-        for (int k = rows->offset[J]; k < rows->offset[J + 1]; ++k)
-            if (rows->index[k] == J && rows->value[k] != 0.0)
-                diagonal[J] = rows->value[k];
+        malloc(sizeof(double) * (10 * (size_t)n + (size_t)pieces + 1));
+    int rc = work
+                 ? lambda_transpose(rows, n, &columns)
+                 : gsn_error_raise(GSN_ERR_MEMORY, __FILE__, __LINE__, __func__,
+                                   "cannot allocate %d values", 9 * n);
+    double *diagonal = work, *b = diagonal + n, *x = b + n, *W = x + n;
+    double *scratch = W + n;
+    struct interpolation_weights weights = {W, e->mass};
+    int most = 0;
+    if (rc == GSN_OK) {
+        memset(W, 0, sizeof(double) * (size_t)n);
+        for (int p = 0; p < e->main_point_count; ++p)
+            if (e->quadrature->point_particle[p] >= 0)
+                W[e->quadrature->point_particle[p]] += e->point_mass[p];
+        for (int I = 0; I < n; ++I) {
+            double sum = 0.0;
+            for (int k = columns.offset[I]; k < columns.offset[I + 1]; ++k)
+                sum +=
+                    W[columns.index[k]] * columns.value[k] * columns.value[k];
+            diagonal[I] = sum + INTERPOLATE_REGULARIZATION * e->mass[I];
+        }
     }
     for (int a = 0; a < 3 && rc == GSN_OK; ++a) {
         for (int J = 0; J < n; ++J)
             b[J] = values[3 * J + a];
         double residual = 0.0;
-        int count =
-            interpolate_component(rows, n, diagonal, b, x, scratch, &residual);
+        int count = interpolate_component(rows, &columns, n, weights, diagonal,
+                                          b, x, scratch, &residual);
         if (count < 0)
-            rc = gsn_error_raise(
-                GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
-                "the coefficients of a field at %d particles "
-                "did not converge (component %d: residual "
-                "%.3g of %.3g after %d iterations)",
-                n, a, residual, max_abs(b, n), INTERPOLATE_MAX_ITERATIONS);
+            rc =
+                gsn_error_raise(GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
+                                "the coefficients of a field at %d particles "
+                                "did not converge (component %d: residual "
+                                "%.3g after %d iterations)",
+                                n, a, residual, INTERPOLATE_MAX_ITERATIONS);
         most = count > most ? count : most;
         for (int J = 0; J < n; ++J)
             c[3 * J + a] = x[J];
     }
+    gsn_shape_rows_free(&columns);
     free(work);
     if (iterations)
         *iterations = most;
@@ -1925,6 +1993,8 @@ int gsn_explicit_carry_over(struct gsn_explicit *to,
     double *field = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
     GSN_CHECK(field, GSN_ERR_MEMORY, "cannot allocate %d values", 3 * n);
     int rc = GSN_OK;
+    /* the masses first: they weigh the interpolation */
+    GSN_CALL_GOTO(gsn_explicit_set_point_mass(to, from->point_mass), rc, done);
     /* the velocity of every particle, kept */
     gsn_explicit_particle_field(from, from->velocity, field);
     GSN_CALL_GOTO(gsn_explicit_interpolate(to, field, to->velocity,
@@ -1933,7 +2003,6 @@ int gsn_explicit_carry_over(struct gsn_explicit *to,
     memset(to->displacement, 0, sizeof(double) * 3 * (size_t)n);
     to->load_factor = from->load_factor;
     to->pore_factor = from->pore_factor;
-    GSN_CALL_GOTO(gsn_explicit_set_point_mass(to, from->point_mass), rc, done);
     memcpy(to->stress, from->stress,
            sizeof(double) * 6 * (size_t)from->point_count);
     memcpy(to->state, from->state,

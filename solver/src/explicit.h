@@ -278,11 +278,23 @@ int gsn_explicit_set_point_mass(struct gsn_explicit *e, const double *mass);
  * imposed on v first. */
 int gsn_explicit_settle(struct gsn_explicit *e);
 
-/* The coefficients c (n x 3) whose field takes the given values (n x 3) at
- * every particle, sum_I Psi_I(X_J) c_I = values_J, by Jacobi iteration
- * by BiCGSTAB with the diagonal as preconditioner, from c = values, to
- * a residual of 1e-13 of the values; GSN_ERR_NUMERICAL if it does not get
- * there. *iterations gets the count (may be NULL). */
+/* The weight eps of the interpolation's regularization below. */
+#define GSN_INTERPOLATE_REGULARIZATION 0.01
+
+/* The coefficients c (n x 3) whose field takes the given values v (n x 3)
+ * at the particles, regularized: c minimizes
+ * |Lambda c - v|_W^2 + eps |c - v|_M^2 with Lambda_JI = Psi_I(X_J), W the
+ * particles' masses and M the lumped ones, keeping the momentum
+ * (sum_I M_I c_I = sum_J W_J v_J). A linear field is kept exactly (c = v);
+ * smooth ones nearly (eps of the exact interpolation's correction is left
+ * out); a field near Lambda's null space is not amplified more than
+ * 1 / (2 sqrt(eps)) = 5 times, where the exact interpolation blew the
+ * velocity of a distorted corner up 127 times (kinetic energy 68 J ->
+ * 43 kJ, docs/solver.md). Conjugate gradients on the normal equations with
+ * the diagonal as preconditioner, to 1e-12 of the right-hand side;
+ * GSN_ERR_NUMERICAL if it does not get there. Needs the masses set
+ * (gsn_explicit_set_point_mass). *iterations gets the count (may be
+ * NULL). */
 int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
                              double *c, int *iterations);
 

@@ -342,6 +342,7 @@ int gsn_reference_update(struct gsn_reference *r,
          * step passed every check on, goes on, and the update is tried
          * again later (the energy check still watches the run) */
         snprintf(report.cause, sizeof report.cause, "%s", gsn_error_message());
+        memcpy(r->last_deferral, report.cause, sizeof r->last_deferral);
         gsn_error_clear();
         report.deferred = 1;
         r->deferred_count++;

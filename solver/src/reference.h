@@ -103,6 +103,7 @@ struct gsn_reference {
                            takes the new reference's stable step times
                            time.safety where that is smaller, else this */
     struct gsn_reference_report last;
+    char last_deferral[512]; /* the cause of the last deferred update */
 };
 
 /* The discretization of the first reference configuration (model.h5's

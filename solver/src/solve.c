@@ -1027,8 +1027,9 @@ static void print_updates(const struct run *r, double seconds)
                ref->loop->release_work);
     if (ref->deferred_count > 0)
         printf("reference updates deferred: %d (the new discretization "
-               "failed its checks; the last: %s)\n",
-               ref->deferred_count, ref->last.deferred ? ref->last.cause : "");
+               "failed its checks%s%s)\n",
+               ref->deferred_count, ref->last_deferral[0] ? "; the last: " : "",
+               ref->last_deferral);
     if (ref->loop->dead_count > 0)
         printf("failed particles: %d (turned inside out; they carry no "
                "stress and keep their mass)\n",

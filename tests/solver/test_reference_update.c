@@ -73,6 +73,59 @@ static void matrix_apply(const double A[9], const double *x, double *y)
         y[r] = A[3 * r] * x[0] + A[3 * r + 1] * x[1] + A[3 * r + 2] * x[2];
 }
 
+/* gsn_explicit_interpolate on e: a linear field kept exactly (c = v, the
+ * RK shape functions' linear consistency), and a field of particle-scale
+ * noise not amplified: |c - v|_M <= |v - Lambda v|_W / (2 sqrt(eps)),
+ * the bound of the regularization in each of Lambda's directions, times
+ * 1 + eps for the momentum's uniform shift. */
+static void test_interpolation_bounds(const struct gsn_explicit *e)
+{
+    const int n = e->particle_count;
+    const double *x = e->quadrature->rk->position;
+    double *v = malloc(sizeof(double) * 3 * (size_t)n);
+    double *c = malloc(sizeof(double) * 3 * (size_t)n);
+    double *back = malloc(sizeof(double) * 3 * (size_t)n);
+    double *W = calloc((size_t)n, sizeof(double));
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k)
+            v[3 * i + k] = 0.2 + 0.3 * x[3 * i] - 0.7 * x[3 * i + 1] * (k + 1) +
+                           0.4 * x[3 * i + 2];
+    TEST_INT(gsn_explicit_interpolate(e, v, c, NULL), GSN_OK);
+    gsn_explicit_particle_field(e, c, back);
+    double worst = 0.0, top = 0.0;
+    for (int at = 0; at < 3 * n; ++at) {
+        worst = fmax(worst, fabs(back[at] - v[at]));
+        top = fmax(top, fabs(v[at]));
+    }
+    printf("interpolation of a linear field: %.2g of %.3g\n", worst, top);
+    TEST_TRUE(worst < 1e-13 * top);
+
+    for (int p = 0; p < e->main_point_count; ++p)
+        W[e->quadrature->point_particle[p]] += e->point_mass[p];
+    unsigned seed = 12345u; /* noise in [-1, 1], the same every run */
+    for (int at = 0; at < 3 * n; ++at) {
+        seed = seed * 1103515245u + 12345u;
+        v[at] = (double)(seed >> 8) / (double)(1u << 23) - 1.0;
+    }
+    TEST_INT(gsn_explicit_interpolate(e, v, c, NULL), GSN_OK);
+    gsn_explicit_particle_field(e, v, back);
+    double departure = 0.0, residual = 0.0, energy = 0.0;
+    for (int at = 0; at < 3 * n; ++at) {
+        departure += e->mass[at / 3] * (c[at] - v[at]) * (c[at] - v[at]);
+        residual += W[at / 3] * (v[at] - back[at]) * (v[at] - back[at]);
+        energy += W[at / 3] * v[at] * v[at];
+    }
+    const double eps = GSN_INTERPOLATE_REGULARIZATION;
+    printf("interpolation of noise: |c - v|_M %.3g, bound %.3g, |v|_W %.3g\n",
+           sqrt(departure), (1 + eps) * sqrt(residual) / (2 * sqrt(eps)),
+           sqrt(energy));
+    TEST_TRUE(sqrt(departure) <= (1 + eps) * sqrt(residual) / (2 * sqrt(eps)));
+    free(v);
+    free(c);
+    free(back);
+    free(W);
+}
+
 static void test_uniform_update(void)
 {
     struct block b;
@@ -131,21 +184,31 @@ static void test_uniform_update(void)
     /* every stress kept bit for bit */
     TEST_TRUE(memcmp(stress, e->stress,
                      sizeof(double) * 6 * (size_t)e->point_count) == 0);
-    /* the velocity of every particle kept: to the interpolation's 1e-13 of
-     * the largest value, a few times over in the residual's propagation */
+    /* the velocity of every particle kept up to the interpolation's
+     * regularization: on this smooth field it leaves out about eps of the
+     * correction v - Lambda v that the exact interpolation makes (eps /
+     * (sigma^2 + eps) in each of Lambda's directions, sigma near 1 for
+     * smooth ones): asked within 2 eps of the largest correction */
     double *v = malloc(sizeof(double) * 3 * (size_t)n), vmax = 0.0;
+    double *smoothed = malloc(sizeof(double) * 3 * (size_t)n), correction = 0;
     gsn_explicit_particle_field(e, e->velocity, v);
+    gsn_explicit_particle_field(e, v0, smoothed);
     for (int i = 0; i < 3 * n; ++i) {
         worst_v = fmax(worst_v, fabs(v[i] - v0[i]));
         vmax = fmax(vmax, fabs(v0[i]));
+        correction = fmax(correction, fabs(v0[i] - smoothed[i]));
     }
-    printf("positions %.2g m, F_ref %.2g, velocities %.2g of %.3g m/s\n",
-           worst_x, worst_F, worst_v, vmax);
-    TEST_TRUE(worst_v < 1e-12 * vmax);
-    /* mass to round-off (partition of unity), momentum to the velocity's
-     * tolerance */
+    printf("positions %.2g m, F_ref %.2g, velocities %.2g of %.3g m/s "
+           "(correction of the exact interpolation %.2g)\n",
+           worst_x, worst_F, worst_v, vmax, correction);
+    TEST_TRUE(worst_v < 2 * GSN_INTERPOLATE_REGULARIZATION * correction);
+    TEST_TRUE(correction > 1e-3 * vmax); /* the check above can fail */
+    /* mass (partition of unity) and momentum (kept by the interpolation)
+     * to round-off */
     TEST_TRUE(report.mass_error < 1e-14);
-    TEST_TRUE(report.momentum_error < 1e-12);
+    TEST_TRUE(report.momentum_error < 1e-13);
+    test_interpolation_bounds(e);
+    free(smoothed);
 
     /* the integration constraint of the new cells: with a uniform stress
      * (F = I on the new reference) f_int_I = sigma sum_q Psi_I n w */
@@ -525,7 +588,7 @@ static double particle_acceleration(const struct gsn_explicit *e, double *a)
 /* An update on a nonuniform stress: the new cells' forces differ from the
  * old ones, and the difference is released over the following steps
  * instead of kicking the particles: right after the update every particle
- * has the acceleration it had before (to the interpolation's tolerance),
+ * has the acceleration it had before (but for its particle-scale part),
  * where without the release it jumps by a sizeable share of it; the
  * released force's factor falls to 0 in its steps, and its work is counted
  * in gsn_reference_energy, so that the energy balance holds. */
@@ -568,7 +631,10 @@ static void test_release_of_unbalanced_force(void)
     printf("acceleration across the update: %.2g with the release, %.2g "
            "without, of %.3g m/s^2\n",
            kept, unreleased, scale);
-    TEST_TRUE(kept < 1e-10 * scale);
+    /* the release keeps the smooth part of the acceleration; its
+     * particle-scale part the interpolation's regularization leaves out
+     * (measured: 48 of the 5.8e3 kick, 0.8%) */
+    TEST_TRUE(kept < 0.02 * unreleased);
     TEST_TRUE(unreleased > 1e-2 * scale);
     /* the release ends in its steps; the balance (from here: the stress
      * was set without work) holds with its work */
