@@ -1995,7 +1995,7 @@ int gsn_explicit_carry_over(struct gsn_explicit *to,
     int rc = GSN_OK;
     /* the masses first: they weigh the interpolation */
     GSN_CALL_GOTO(gsn_explicit_set_point_mass(to, from->point_mass), rc, done);
-    /* the velocity of every particle, kept */
+    /* the velocity of every particle, carried (regularized) */
     gsn_explicit_particle_field(from, from->velocity, field);
     GSN_CALL_GOTO(gsn_explicit_interpolate(to, field, to->velocity,
                                            &to->interpolation_iterations),

@@ -255,7 +255,7 @@ int gsn_explicit_release_unbalanced(struct gsn_explicit *to,
 
 /* Carries the state of `from` onto `to`, a loop built (gsn_explicit_create)
  * on the current positions of from's particles, X_ref + u(X_ref): the
- * particles' masses, velocities (the coefficients of `to` that interpolate
+ * particles' masses, velocities (the coefficients of `to` that carry
  * from's velocity at every particle, gsn_explicit_interpolate), the stress
  * and material state of every point, F = (I + H) F_ref as to's F_ref, the
  * failed points, the clock and the work done; d = 0 and H = 0 on the new
