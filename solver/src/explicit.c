@@ -1717,7 +1717,6 @@ int gsn_explicit_settle(struct gsn_explicit *e)
 /* gsn_explicit_interpolate: at most this many conjugate-gradient
  * iterations, to a residual of INTERPOLATE_TOLERANCE of the right-hand side
  * (max norm). */
-#define INTERPOLATE_REGULARIZATION GSN_INTERPOLATE_REGULARIZATION
 enum { INTERPOLATE_MAX_ITERATIONS = 2000 };
 #define INTERPOLATE_TOLERANCE 1e-12
 
@@ -1813,7 +1812,7 @@ static void normal_apply(const struct gsn_shape_rows *rows,
         work[J] *= weights.particle[J];
     lambda_apply(columns, n, work, y);
     for (int I = 0; I < n; ++I)
-        y[I] += INTERPOLATE_REGULARIZATION * weights.lumped[I] * x[I];
+        y[I] += GSN_INTERPOLATE_REGULARIZATION * weights.lumped[I] * x[I];
 }
 
 /* Coefficients c for the values b of one component: c = b + delta with
@@ -1889,7 +1888,7 @@ int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
     int rc = work
                  ? lambda_transpose(rows, n, &columns)
                  : gsn_error_raise(GSN_ERR_MEMORY, __FILE__, __LINE__, __func__,
-                                   "cannot allocate %d values", 9 * n);
+                                   "cannot allocate %d values", 10 * n);
     double *diagonal = work, *b = diagonal + n, *x = b + n, *W = x + n;
     double *scratch = W + n;
     struct interpolation_weights weights = {W, e->mass};
@@ -1904,7 +1903,7 @@ int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
             for (int k = columns.offset[I]; k < columns.offset[I + 1]; ++k)
                 sum +=
                     W[columns.index[k]] * columns.value[k] * columns.value[k];
-            diagonal[I] = sum + INTERPOLATE_REGULARIZATION * e->mass[I];
+            diagonal[I] = sum + GSN_INTERPOLATE_REGULARIZATION * e->mass[I];
         }
     }
     for (int a = 0; a < 3 && rc == GSN_OK; ++a) {

@@ -21,6 +21,14 @@ stop_at_rows() {
     wait "$1"
     stopped_status=$?
 }
+# wait_for_file FILE SECONDS: until FILE is not empty, at most SECONDS.
+wait_for_file() {
+    i=0
+    while [ ! -s "$1" ] && [ $i -lt $(($2 * 10)) ]; do
+        sleep 0.1
+        i=$((i + 1))
+    done
+}
 # PID runs with libgomp's short spin (app/geoscni.c, exec_with_short_spin)
 # unless the wait policy was given; WHAT names it in the message
 check_short_spin() {

@@ -47,11 +47,7 @@ rm -rf "$out/c/level_3"
 "$geoscni" converge "$out/strip.yaml" -o "$out/c" --quantity peak_pressure \
     --no-pictures >"$out/log3" 2>&1 &
 study=$!
-i=0
-while [ ! -s "$out/c/level_3/history.csv" ] && [ $i -lt 600 ]; do
-    sleep 0.1
-    i=$((i + 1))
-done
+wait_for_file "$out/c/level_3/history.csv" 60
 sleep 0.5
 kill -TERM $study
 wait $study

@@ -56,11 +56,7 @@ awk -F, -v tol=0.01 'NR == 2 { for (k = 1; k <= NF; ++k) c[$k] = k }
 # The vertical cut, stopped in its third trial, then continued.
 "$geoscni" fos cases/vertical_cut.yaml -o "$out/cut" --no-pictures >"$out/cut0.log" 2>&1 &
 study=$!
-i=0
-while [ ! -s "$out/cut/fos.csv" ] && [ $i -lt 600 ]; do
-    sleep 0.05
-    i=$((i + 1))
-done
+wait_for_file "$out/cut/fos.csv" 30
 # fos solves too: without the short spin, fos and fos_site beside each
 # other ran 2.2 times slower than one after the other
 check_short_spin $study "fos"

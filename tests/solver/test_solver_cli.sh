@@ -148,11 +148,7 @@ sed -e "s#^geometry: .*#geometry: $root/geometries/box.geo#" \
 mkdir -p "$out/straight" && cp "$out/int/model.h5" "$out/straight/"
 "$geoscni" solve "$out/long.yaml" -o "$out/int" -q 2>"$out/err" &
 solver=$!
-i=0
-while [ ! -s "$out/int/history.csv" ] && [ $i -lt 300 ]; do
-    sleep 0.1
-    i=$((i + 1))
-done
+wait_for_file "$out/int/history.csv" 30
 check_short_spin $solver "the solver"
 sleep 1
 kill -TERM $solver
