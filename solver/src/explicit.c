@@ -445,13 +445,15 @@ int gsn_explicit_create(const struct gsn_model *m,
         GSN_CALL_GOTO(
             alloc_array(arrays[i].array, arrays[i].count, arrays[i].size), rc,
             fail);
-    GSN_CALL_GOTO(gsn_point_blocks_create(quadrature,
-                                          quadrature->point_count >
-                                                  quadrature->main_point_count
-                                              ? BLOCK_POINTS_STABILIZED
-                                              : BLOCK_POINTS,
-                                          &e->blocks),
-                  rc, fail);
+    GSN_CALL_GOTO(
+        gsn_point_blocks_create(
+            quadrature,
+            quadrature->point_count > quadrature->main_point_count &&
+                    quadrature->stabilization != GSN_STABILIZATION_NSNI
+                ? BLOCK_POINTS_STABILIZED
+                : BLOCK_POINTS,
+            &e->blocks),
+        rc, fail);
     GSN_CALL_GOTO(
         alloc_array((void **)&e->block_distortion,
                     DISTORTION_COLUMNS * (size_t)e->blocks->block_count,
@@ -647,15 +649,14 @@ typedef double gsn_v4 __attribute__((vector_size(32), aligned(8), may_alias));
  * (the 4th zero), so every entry is three 4-wide multiply-adds into the
  * columns of dH. Two sets of sums, even and odd entries, added at the end,
  * so that consecutive entries do not wait for each other's additions. */
-static inline void row_gradient(const struct gsn_point_blocks *b, int r,
-                                const double *restrict u4, double dH[9])
+static inline void entries_gradient(const struct gsn_point_blocks *b, int k,
+                                    const int end, const double *restrict u4,
+                                    double dH[9])
 {
     const uint16_t *restrict slot = b->entry_slot;
     const double *restrict g = b->entry_gradient;
     const gsn_v4 zero = {0.0, 0.0, 0.0, 0.0};
     gsn_v4 c0 = zero, c1 = zero, c2 = zero, d0 = zero, d1 = zero, d2 = zero;
-    int k = b->row_start[r];
-    const int end = b->row_start[r + 1];
     for (; k + 1 < end; k += 2) {
         /* The gather is the stream's first read (the scatter reads it again
          * from L2): ask for it ~3 kB ahead, as the hardware prefetcher
@@ -681,26 +682,144 @@ static inline void row_gradient(const struct gsn_point_blocks *b, int r,
     c1 += d1;
     c2 += d2;
     for (int i = 0; i < 3; ++i) {
-        dH[3 * i] = c0[i];
-        dH[3 * i + 1] = c1[i];
-        dH[3 * i + 2] = c2[i];
+        dH[3 * i] += c0[i];
+        dH[3 * i + 1] += c1[i];
+        dH[3 * i + 2] += c2[i];
     }
 }
 
-/* force_slot += P g_I over packed row r (eq. (29) with P = J sigma F^-T w),
- * into slots of 4 doubles (the 4th stays zero). */
-static inline void row_scatter(const struct gsn_point_blocks *b, int r,
-                               const double P[9], double *restrict f4)
+/* dH of packed row r: entries_gradient over the whole row. */
+static inline void row_gradient(const struct gsn_point_blocks *b, int r,
+                                const double *restrict u4, double dH[9])
+{
+    memset(dH, 0, 9 * sizeof(double));
+    entries_gradient(b, b->row_start[r], b->row_start[r + 1], u4, dH);
+}
+
+/* The pair index of the six second derivatives d_j d_k of a fused row
+ * (point_blocks.h: d11 d22 d33 d12 d23 d13). */
+static inline int hessian_pair(int j, int k)
+{
+    static const int pair[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
+    return pair[j][k];
+}
+
+/* A fused row r (NSNI, point_blocks.h): dH of the nodal point as
+ * row_gradient, and A[3 c + i] = sum_I u_Ii d_c Psi_I over the six second
+ * derivatives c of its first entries, from which the increment of
+ * stabilization point k is dH_k[i][j] = A[3 hessian_pair(k, j) + i]
+ * (Hillman & Chen 2016: the gradient of the displacement gradient). */
+static inline void fused_row_gradient(const struct gsn_point_blocks *b, int r,
+                                      const double *restrict u4, double dH[9],
+                                      double A[18])
+{
+    const uint16_t *restrict slot = b->entry_slot;
+    const double *restrict g = b->entry_gradient;
+    const int k0 = b->row_start[r];
+    const int h0 = b->row_hessian_start[r];
+    const int middle = k0 + (b->row_hessian_start[r + 1] - h0);
+    const double *restrict d = &b->entry_hessian[6 * (size_t)h0];
+    const gsn_v4 zero = {0.0, 0.0, 0.0, 0.0};
+    gsn_v4 c0 = zero, c1 = zero, c2 = zero;
+    gsn_v4 a0 = zero, a1 = zero, a2 = zero, a3 = zero, a4 = zero, a5 = zero;
+    for (int k = k0; k < middle; ++k, d += 6) {
+        __builtin_prefetch(&g[3 * k + 384]);
+        __builtin_prefetch(&d[768]);
+        const gsn_v4 u = *(const gsn_v4 *)&u4[4 * slot[k]];
+        c0 += u * g[3 * k];
+        c1 += u * g[3 * k + 1];
+        c2 += u * g[3 * k + 2];
+        a0 += u * d[0];
+        a1 += u * d[1];
+        a2 += u * d[2];
+        a3 += u * d[3];
+        a4 += u * d[4];
+        a5 += u * d[5];
+    }
+    for (int i = 0; i < 3; ++i) {
+        dH[3 * i] = c0[i];
+        dH[3 * i + 1] = c1[i];
+        dH[3 * i + 2] = c2[i];
+        A[i] = a0[i];
+        A[3 + i] = a1[i];
+        A[6 + i] = a2[i];
+        A[9 + i] = a3[i];
+        A[12 + i] = a4[i];
+        A[15 + i] = a5[i];
+    }
+    entries_gradient(b, middle, b->row_start[r + 1], u4, dH);
+}
+
+/* dH_k (9) of stabilization point k from a fused row's A. */
+static void fused_point_gradient(const double A[18], int k, double dH[9])
+{
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            dH[3 * i + j] = A[3 * hessian_pair(k, j) + i];
+}
+
+/* The coefficients C[3 c + i] of the six second derivatives in the force
+ * of the three stabilization points with P_k = P[9 k ..] (row-major):
+ * f_Ii += sum_k sum_j P_k[i][j] d_k d_j Psi_I = sum_c C[3 c + i] d_c Psi_I. */
+static void fused_force_coefficients(const double P[27], double C[18])
+{
+    for (int j = 0; j < 3; ++j)
+        for (int k = j; k < 3; ++k)
+            for (int i = 0; i < 3; ++i)
+                C[3 * hessian_pair(j, k) + i] =
+                    j == k ? P[9 * k + 3 * i + k]
+                           : P[9 * k + 3 * i + j] + P[9 * j + 3 * i + k];
+}
+
+/* force_slot += P g_I over entries [k, end) (eq. (29) with
+ * P = J sigma F^-T w), into slots of 4 doubles (the 4th stays zero). */
+static inline void entries_scatter(const struct gsn_point_blocks *b, int k,
+                                   const int end, const double P[9],
+                                   double *restrict f4)
 {
     const uint16_t *restrict slot = b->entry_slot;
     const double *restrict g = b->entry_gradient;
     const gsn_v4 p0 = {P[0], P[3], P[6], 0.0};
     const gsn_v4 p1 = {P[1], P[4], P[7], 0.0};
     const gsn_v4 p2 = {P[2], P[5], P[8], 0.0};
-    for (int k = b->row_start[r]; k < b->row_start[r + 1]; ++k) {
+    for (; k < end; ++k) {
         gsn_v4 *f = (gsn_v4 *)&f4[4 * slot[k]];
         *f += p0 * g[3 * k] + p1 * g[3 * k + 1] + p2 * g[3 * k + 2];
     }
+}
+
+/* force_slot += P g_I over packed row r. */
+static inline void row_scatter(const struct gsn_point_blocks *b, int r,
+                               const double P[9], double *restrict f4)
+{
+    entries_scatter(b, b->row_start[r], b->row_start[r + 1], P, f4);
+}
+
+/* A fused row r: the nodal point's P g_I and, on its first entries, the
+ * stabilization points' sum_c C_c d_c Psi_I (fused_force_coefficients). */
+static inline void fused_row_scatter(const struct gsn_point_blocks *b, int r,
+                                     const double P[9], const double C[18],
+                                     double *restrict f4)
+{
+    const uint16_t *restrict slot = b->entry_slot;
+    const double *restrict g = b->entry_gradient;
+    const int k0 = b->row_start[r];
+    const int h0 = b->row_hessian_start[r];
+    const int middle = k0 + (b->row_hessian_start[r + 1] - h0);
+    const double *restrict d = &b->entry_hessian[6 * (size_t)h0];
+    const gsn_v4 p0 = {P[0], P[3], P[6], 0.0};
+    const gsn_v4 p1 = {P[1], P[4], P[7], 0.0};
+    const gsn_v4 p2 = {P[2], P[5], P[8], 0.0};
+    gsn_v4 q[6];
+    for (int c = 0; c < 6; ++c)
+        q[c] = (gsn_v4){C[3 * c], C[3 * c + 1], C[3 * c + 2], 0.0};
+    for (int k = k0; k < middle; ++k, d += 6) {
+        gsn_v4 *f = (gsn_v4 *)&f4[4 * slot[k]];
+        *f += p0 * g[3 * k] + p1 * g[3 * k + 1] + p2 * g[3 * k + 2] +
+              q[0] * d[0] + q[1] * d[1] + q[2] * d[2] + q[3] * d[3] +
+              q[4] * d[4] + q[5] * d[5];
+    }
+    entries_scatter(b, middle, b->row_start[r + 1], P, f4);
 }
 
 /* The elastic share of a nodal point's strain increment in this step,
@@ -911,16 +1030,39 @@ static void subcell_scatter(const struct gsn_point_blocks *b, int r,
         fold[a] -= P[a];
 }
 
-/* Stabilization point s of particle L (block k): the elastic stress rate of
- * its row, MSCNI's B_s - B_L (Puso et al. 2008) or NSNI's strain gradient
- * (Hillman & Chen 2016), both zero for every linear displacement field.
+/* Stabilization point p of particle L, from its increment dH: the elastic
+ * stress rate of its row, MSCNI's B_s - B_L (Puso et al. 2008) or NSNI's
+ * strain gradient (Hillman & Chen 2016), both zero for every linear
+ * displacement field; its new stress into sigma and e->stress, its work.
  * MSCNI's rate is scaled by the elastic share of L's nodal point in this
  * step: the sub-cell deviations then yield with the soil instead of
  * adding an elastic stiffness that grows without bound once it flows
  * (docs/solver.md, "Stabilization"); NSNI's shear part is, its volumetric
  * part stays elastic (a flowing particle keeps its bulk stiffness; with
  * the whole rate scaled, particles at the faces of a pressed soil block
- * collapse to det F 0.03, tests/solver/test_checkerboard.c). MSCNI:
+ * collapse to det F 0.03, tests/solver/test_checkerboard.c). */
+static void stabilization_stress(struct gsn_explicit *e, int L, int p,
+                                 const double dH[9], double share,
+                                 double sigma[6])
+{
+    const int relative = e->blocks->relative;
+    double w = e->quadrature->point_weight[p];
+    double deps[6], rate[6], mean[6];
+    gsn_matrix_sym_to_voigt(dH, deps);
+    double bulk = e->bulk_modulus[e->point_material[L]],
+           shear = e->shear_modulus[e->point_material[L]];
+    elastic_stress(bulk, relative ? shear : share * shear, deps, rate);
+    double scale = relative ? share : 1.0;
+    for (int a = 0; a < 6; ++a)
+        sigma[a] = e->stress[6 * p + a] + scale * rate[a];
+    for (int a = 0; a < 6; ++a)
+        mean[a] = 0.5 * (e->stress[6 * p + a] + sigma[a]);
+    memcpy(&e->stress[6 * p], sigma, 6 * sizeof(double));
+    e->point_energy[p] = voigt_contract(mean, deps) * w;
+}
+
+/* Stabilization point s of particle L (block k) on its own packed row:
+ * stabilization_stress of its increment, its force scattered. MSCNI:
  * (B_s - B_L) du = B_s du - dH_L with the increment dH_L of the nodal
  * point; the force P_s (B_s - B_L) is scattered as P_s B_s here and
  * -P_s B_L through fold, the nodal point's P. */
@@ -928,38 +1070,42 @@ static void stabilization_point(struct gsn_explicit *e, int k, int L, int s,
                                 const double *u4, const double dH_L[9],
                                 double share, double fold[9], double *f4)
 {
-    const struct gsn_quadrature *q = e->quadrature;
     const struct gsn_point_blocks *b = e->blocks;
     int p = e->main_point_count + b->subcells * L + s;
     int r = gsn_point_blocks_subcell_row(b, k, L, s);
     if (b->row_start[r] == b->row_start[r + 1])
         return; /* an empty sub-cell: weight 0, no entries */
-    double w = q->point_weight[p];
-    double dH[9], deps[6], rate[6], sigma[6], mean[6];
+    double dH[9], sigma[6];
     row_gradient(b, r, u4, dH);
     for (int a = 0; a < 9 && b->relative; ++a)
         dH[a] -= dH_L[a];
-    gsn_matrix_sym_to_voigt(dH, deps);
-    double bulk = e->bulk_modulus[e->point_material[L]],
-           shear = e->shear_modulus[e->point_material[L]];
-    elastic_stress(bulk, b->relative ? shear : share * shear, deps, rate);
-    double scale = b->relative ? share : 1.0;
-    for (int a = 0; a < 6; ++a)
-        sigma[a] = e->stress[6 * p + a] + scale * rate[a];
-    for (int a = 0; a < 6; ++a)
-        mean[a] = 0.5 * (e->stress[6 * p + a] + sigma[a]);
-    memcpy(&e->stress[6 * p], sigma, sizeof sigma);
-    e->point_energy[p] = voigt_contract(mean, deps) * w;
-    subcell_scatter(b, r, sigma, w, fold, f4);
+    stabilization_stress(e, L, p, dH, share, sigma);
+    subcell_scatter(b, r, sigma, e->quadrature->point_weight[p], fold, f4);
+}
+
+/* The force coefficients of the three stabilization points of nodal point
+ * L on a fused row (fused_force_coefficients) from their stresses
+ * (stress: points x 6, the stabilization points' at main + 3 L + k). */
+static void fused_coefficients(const struct gsn_explicit *e, int L,
+                               const double *stress, double C[18])
+{
+    double P[27];
+    for (int k = 0; k < 3; ++k) {
+        int p = e->main_point_count + 3 * L + k;
+        elastic_piola(&stress[6 * (size_t)p], e->quadrature->point_weight[p],
+                      &P[9 * k]);
+    }
+    fused_force_coefficients(P, C);
 }
 
 /* Per-thread work of one block: u and forces (4 per slot), the main
  * points' increments and folded P (9 per point), the elastic shares (1 per
- * point), and a chunk's material work. */
+ * point), a fused row's second-derivative sums (18 per point) and a chunk's
+ * material work. */
 static size_t block_work_size(const struct gsn_point_blocks *b)
 {
     size_t size = 8 * (size_t)b->max_block_slots +
-                  19 * (size_t)b->max_block_points + CHUNK_WORK;
+                  37 * (size_t)b->max_block_points + CHUNK_WORK;
     return (size + 7) / 8 * 8; /* whole cache lines per thread */
 }
 
@@ -1007,19 +1153,45 @@ static int block_step(struct gsn_explicit *e, int k)
     double *dH = f4 + 4 * (size_t)b->max_block_slots;
     double *fold = dH + 9 * (size_t)b->max_block_points;
     double *share = fold + 9 * (size_t)b->max_block_points;
-    double *work = share + (size_t)b->max_block_points;
+    double *A = share + (size_t)b->max_block_points;
+    double *work = A + 18 * (size_t)b->max_block_points;
     block_gather(e, k, e->displacement, e->previous_displacement, u4);
     memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
     memset(&e->point_failed[p0], 0, sizeof(int) * (size_t)(p1 - p0));
-    for (int L = p0; L < p1; ++L)
-        row_gradient(b, gsn_point_blocks_main_row(b, k, L), u4,
-                     &dH[9 * (L - p0)]);
+    for (int L = p0; L < p1; ++L) {
+        int r = gsn_point_blocks_main_row(b, k, L);
+        if (b->fused)
+            fused_row_gradient(b, r, u4, &dH[9 * (L - p0)], &A[18 * (L - p0)]);
+        else
+            row_gradient(b, r, u4, &dH[9 * (L - p0)]);
+    }
     if (main_chunk(e, p0, p1, dH, work, share,
                    &e->block_distortion[DISTORTION_COLUMNS * (size_t)k]) !=
         GSN_OK)
         return GSN_ERR_NUMERICAL;
     memcpy(fold, &e->piola[9 * (size_t)p0],
            sizeof(double) * 9 * (size_t)(p1 - p0));
+    if (b->fused) {
+        /* NSNI on fused rows: each point's three strain gradients, then
+         * its four points' forces in one scatter */
+        for (int L = p0; L < p1; ++L) {
+            int r = gsn_point_blocks_main_row(b, k, L);
+            double C[18] = {0};
+            if (!e->point_dead[L] &&
+                b->row_hessian_start[r + 1] > b->row_hessian_start[r]) {
+                for (int s = 0; s < 3; ++s) {
+                    double dH_s[9], sigma[6];
+                    fused_point_gradient(&A[18 * (L - p0)], s, dH_s);
+                    stabilization_stress(e, L, e->main_point_count + 3 * L + s,
+                                         dH_s, share[L - p0], sigma);
+                }
+                fused_coefficients(e, L, e->stress, C);
+            }
+            fused_row_scatter(b, r, &fold[9 * (L - p0)], C, f4);
+        }
+        block_store(e, k, f4);
+        return GSN_OK;
+    }
     for (int L = p0; L < p1; ++L)
         for (int s = 0; s < S && !e->point_dead[L]; ++s)
             stabilization_point(e, k, L, s, u4, &dH[9 * (L - p0)],
@@ -1049,12 +1221,30 @@ static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
     for (int L = p0; L < p1; ++L) {
         double eps[6], sigma[6];
         double *HL = &H[9 * (L - p0)];
-        row_gradient(b, gsn_point_blocks_main_row(b, k, L), u4, HL);
+        int row = gsn_point_blocks_main_row(b, k, L);
+        double A[18], P[27], C[18];
+        if (b->fused)
+            fused_row_gradient(b, row, u4, HL, A);
+        else
+            row_gradient(b, row, u4, HL);
         gsn_matrix_sym_to_voigt(HL, eps);
         double bulk = e->bulk_modulus[e->point_material[L]],
                shear = e->shear_modulus[e->point_material[L]];
         elastic_stress(bulk, shear, eps, sigma);
         elastic_piola(sigma, w[L], &fold[9 * (L - p0)]);
+        if (b->fused) {
+            for (int s = 0; s < 3; ++s) {
+                double Hs[9];
+                fused_point_gradient(A, s, Hs);
+                gsn_matrix_sym_to_voigt(Hs, eps);
+                elastic_stress(bulk, shear, eps, sigma);
+                elastic_piola(sigma, w[e->main_point_count + 3 * L + s],
+                              &P[9 * s]);
+            }
+            fused_force_coefficients(P, C);
+            fused_row_scatter(b, row, &fold[9 * (L - p0)], C, f4);
+            continue;
+        }
         for (int s = 0; s < S; ++s) {
             int p = e->main_point_count + S * L + s;
             int r = gsn_point_blocks_subcell_row(b, k, L, s);
@@ -1069,7 +1259,7 @@ static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
             subcell_scatter(b, r, sigma, w[p], &fold[9 * (L - p0)], f4);
         }
     }
-    for (int L = p0; L < p1; ++L)
+    for (int L = p0; L < p1 && !b->fused; ++L)
         row_scatter(b, gsn_point_blocks_main_row(b, k, L), &fold[9 * (L - p0)],
                     f4);
     block_store(e, k, f4);
@@ -1660,7 +1850,14 @@ static void block_forces(struct gsn_explicit *e, int k)
     memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
     memcpy(fold, &e->piola[9 * (size_t)p0],
            sizeof(double) * 9 * (size_t)(p1 - p0));
-    for (int L = p0; L < p1; ++L)
+    for (int L = p0; L < p1 && b->fused; ++L) {
+        double C[18] = {0};
+        if (!e->point_dead[L])
+            fused_coefficients(e, L, e->stress, C);
+        fused_row_scatter(b, gsn_point_blocks_main_row(b, k, L),
+                          &fold[9 * (L - p0)], C, f4);
+    }
+    for (int L = p0; L < p1 && !b->fused; ++L)
         for (int s = 0; s < S && !e->point_dead[L]; ++s) {
             int p = e->main_point_count + S * L + s;
             int r = gsn_point_blocks_subcell_row(b, k, L, s);
@@ -1669,7 +1866,7 @@ static void block_forces(struct gsn_explicit *e, int k)
             subcell_scatter(b, r, &e->stress[6 * (size_t)p], w[p],
                             &fold[9 * (L - p0)], f4);
         }
-    for (int L = p0; L < p1; ++L)
+    for (int L = p0; L < p1 && !b->fused; ++L)
         row_scatter(b, gsn_point_blocks_main_row(b, k, L), &fold[9 * (L - p0)],
                     f4);
     block_store(e, k, f4);

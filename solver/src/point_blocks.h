@@ -18,7 +18,16 @@
  * of the particle's nodal point, and folds the forces -B_L^T P_s of the
  * sub-cells into the nodal point's P (docs/solver.md, "Speed"). B_s is
  * recovered exactly where B_L has no entry, and to round-off elsewhere, as
- * (B_s - B_L) + B_L; entries that come out exactly zero are left out. */
+ * (B_s - B_L) + B_L; entries that come out exactly zero are left out.
+ *
+ * NSNI's three rows of a nodal point, d/dX_k grad Psi_I(X_L), have the same
+ * particles, all of them (or nearly: zero gradients are added) in the main
+ * row's: they ride on the main row (fused). Its entries are ordered with
+ * the particles of the NSNI rows first, and those carry the six values of
+ * the symmetric second derivatives d^2 Psi_I / dX_j dX_k besides the
+ * gradient, so a block gathers each particle's increment once for all four
+ * rows and scatters the four points' forces together (issue 17): 73
+ * entries a nodal point on Slope I instead of 73 + 3 x 32. */
 #ifndef GEOSCNI_POINT_BLOCKS_H
 #define GEOSCNI_POINT_BLOCKS_H
 
@@ -39,30 +48,45 @@ struct gsn_point_blocks {
     int subcells;       /* stabilization points per main point, or 0 */
     int relative;       /* 1: MSCNI, the rows act as B_s - B_L (below);
                            0: NSNI, as they are */
+    int fused;          /* 1: NSNI, its rows ride on the main rows (above):
+                           one packed row per main point */
     int *block_point;   /* block_count + 1: the main points of each block */
     int *block_slot;    /* block_count + 1: the slots of each block */
     int *slot_particle; /* slots: the particle of each */
     /* Packed rows: block k holds the rows of its main points p0..p1-1,
      * then their stabilization rows (S per point, in sub-cell order);
      * row r has entries row_start[r] .. row_start[r+1]-1. */
-    int *row_start;            /* main points x (1 + subcells) + 1 */
-    uint16_t *entry_slot;      /* the slot of each entry, within its block */
-    double *entry_gradient;    /* 3 per entry: dPsi_I/dX_j, 1/m */
+    int *row_start;         /* main points x (1 + subcells) + 1 */
+    uint16_t *entry_slot;   /* the slot of each entry, within its block */
+    double *entry_gradient; /* 3 per entry: dPsi_I/dX_j, 1/m */
+    /* fused: the first row_hessian_start[r+1] - row_hessian_start[r]
+     * entries of row r carry second derivatives, 6 each from
+     * entry_hessian[6 row_hessian_start[r]]: d11, d22, d33, d12, d23, d13
+     * (1/m^2; NULL unless fused) */
+    int *row_hessian_start;
+    double *entry_hessian;
     int *particle_slot_offset; /* particles + 1 */
     int *particle_slot;        /* the slots of each particle, ascending */
     int max_block_slots;       /* the most slots of one block */
     int max_block_points;      /* the most main points of one block */
 };
 
+/* Packed rows per main point: 1 + subcells, or 1 when fused. */
+static inline int gsn_point_blocks_row_stride(const struct gsn_point_blocks *b)
+{
+    return b->fused ? 1 : 1 + b->subcells;
+}
+
 /* The packed row of main point L (block k holds L). */
 static inline int gsn_point_blocks_main_row(const struct gsn_point_blocks *b,
                                             int k, int L)
 {
-    return b->block_point[k] * (1 + b->subcells) + (L - b->block_point[k]);
+    return b->block_point[k] * gsn_point_blocks_row_stride(b) +
+           (L - b->block_point[k]);
 }
 
 /* The packed row of stabilization point s of nodal point L (block k holds
- * L). */
+ * L); not fused. */
 static inline int gsn_point_blocks_subcell_row(const struct gsn_point_blocks *b,
                                                int k, int L, int s)
 {
@@ -73,7 +97,7 @@ static inline int gsn_point_blocks_subcell_row(const struct gsn_point_blocks *b,
 /* Packs the gradient rows of q (main points [0, main): the nodal points,
  * point L = particle L, or the Gauss points; main + S L + s the
  * stabilization points of nodal point L) into blocks of at most
- * block_points main points. */
+ * block_points main points; NSNI's rows fused into the main rows. */
 int gsn_point_blocks_create(const struct gsn_quadrature *q, int block_points,
                             struct gsn_point_blocks **out);
 
