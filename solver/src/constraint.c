@@ -2,19 +2,20 @@
 #include "constraint.h"
 #include "geoscni/error.h"
 
-#include <klu.h>
+#include <cholmod.h>
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* S_c with a condition estimate worse than this cannot be trusted to
- * impose the boundary values to 1e-8 relative. */
+/* S_c whose Cholesky factor has (min L_kk / max L_kk)^2 below this (CHOLMOD's
+ * cholmod_rcond, a cheap estimate of the reciprocal condition) cannot be
+ * trusted to impose the boundary values to 1e-8 relative. */
 #define CONSTRAINT_RCOND_LIMIT 1e-12
-/* The copied factors must solve S x = b with a componentwise backward
+/* The copied factor must solve S x = b with a componentwise backward
  * error (|S x - b|_i / (|S| |x| + |b|)_i, Oettli-Prager) below
- * this: LU with partial pivoting gives a small multiple of n eps; a wrong
- * copy of the factors gives O(1), whatever the conditioning. */
+ * this: Cholesky gives a small multiple of n eps; a wrong copy of the
+ * factor gives O(1), whatever the conditioning. */
 #define CONSTRAINT_SOLVE_CHECK 1e-10
 /* Constrained particle components below which the three solves run on one
  * thread (a parallel region costs more than small solves). */
@@ -41,21 +42,20 @@ struct component_constraint {
     int *s_column;
     double *s_entry;
     double *rhs; /* right-hand side, then solution */
-    /* The factors of S_c from KLU (klu_extract, one block):
-     * P (R \ S) Q = L U, copied for the solve of every step (each
-     * triangle by column in the order the solve reads it; the strict
-     * parts, U's diagonal apart). */
-    int *pivot_row;    /* P: row pivot_row[k] of S is pivot k */
-    int *column_order; /* Q: unknown column_order[k] is pivot k's */
-    double *row_scale; /* R: pivot row k was divided by row_scale[k] (KLU
-                          keeps the scale factors in pivot order) */
-    int *lower_offset; /* count + 1: L's columns 0, 1, ... */
-    int *lower_row;
-    double *lower_value;
-    int *upper_offset; /* count + 1: U's columns count-1, count-2, ... */
-    int *upper_row;
-    double *upper_value;
-    double *upper_diagonal;
+    /* The supernodal Cholesky factor of S_c from CHOLMOD, P S P^T = L L^T,
+     * copied for the solve of every step: per supernode (columns
+     * super_column[s] .. super_column[s+1]-1, w of them) its diagonal
+     * block's lower triangle by rows (row r holds r + 1 values, the
+     * diagonal last, inverted), then its rows below the block, w values
+     * each, by rows; their pivots in super_row. Every value is read once
+     * forward and once backward, in storage order, in dense runs of w. */
+    int *pivot; /* P: pivot k is unknown pivot[k] */
+    int super_count;
+    int *super_column;          /* super_count + 1 */
+    int *super_row_offset;      /* super_count + 1: into super_row */
+    int *super_row;             /* the pivots of the rows below each block */
+    size_t *super_value_offset; /* super_count + 1: into super_value */
+    double *super_value;
     double *pivot_work; /* count */
 };
 
@@ -159,155 +159,236 @@ static int collect_prescriptions(const struct gsn_model *m,
     return GSN_OK;
 }
 
-/* Copies KLU's factors P (R \ S) Q = L U (one block: no BTF) into
- * the arrays of the step's solve (factor_solve). */
-static int copy_factors(struct component_constraint *cc, klu_symbolic *symbolic,
-                        klu_numeric *numeric, klu_common *common)
+/* The factor's supernodes into cc (layout above), from CHOLMOD's
+ * supernodal L (L(r, c) of supernode s at x[px[s] + r + c nsrow], its rows
+ * s[pi[s] ..], the first w of them its columns). */
+static int copy_factor(struct component_constraint *cc, const cholmod_factor *L)
 {
-    int n = cc->count, lnz = numeric->lnz, unz = numeric->unz;
-    int *Lp = malloc(sizeof(int) * ((size_t)n + 1));
-    int *Up = malloc(sizeof(int) * ((size_t)n + 1));
-    int *Li = malloc(sizeof(int) * (size_t)lnz);
-    int *Ui = malloc(sizeof(int) * (size_t)unz);
-    double *Lx = malloc(sizeof(double) * (size_t)lnz);
-    double *Ux = malloc(sizeof(double) * (size_t)unz);
-    cc->pivot_row = malloc(sizeof(int) * (size_t)n);
-    cc->column_order = malloc(sizeof(int) * (size_t)n);
-    cc->row_scale = malloc(sizeof(double) * (size_t)n);
-    cc->lower_offset = calloc((size_t)n + 1, sizeof(int));
-    cc->upper_offset = calloc((size_t)n + 1, sizeof(int));
-    cc->lower_row = malloc(sizeof(int) * (size_t)lnz);
-    cc->lower_value = malloc(sizeof(double) * (size_t)lnz);
-    cc->upper_row = malloc(sizeof(int) * (size_t)unz);
-    cc->upper_value = malloc(sizeof(double) * (size_t)unz);
-    cc->upper_diagonal = calloc((size_t)n, sizeof(double));
+    int n = cc->count, ns = (int)L->nsuper;
+    const int *super = L->super, *pi = L->pi, *px = L->px, *rows = L->s;
+    const int *perm = L->Perm;
+    const double *x = L->x;
+    cc->super_count = ns;
+    cc->pivot = malloc(sizeof(int) * (size_t)n);
+    cc->super_column = malloc(sizeof(int) * ((size_t)ns + 1));
+    cc->super_row_offset = malloc(sizeof(int) * ((size_t)ns + 1));
+    cc->super_value_offset = malloc(sizeof(size_t) * ((size_t)ns + 1));
     cc->pivot_work = malloc(sizeof(double) * (size_t)n);
-    int rc = GSN_OK;
-    GSN_CHECK_GOTO(Lp && Up && Li && Ui && Lx && Ux && cc->pivot_row &&
-                       cc->column_order && cc->row_scale && cc->lower_offset &&
-                       cc->upper_offset && cc->lower_row && cc->lower_value &&
-                       cc->upper_row && cc->upper_value && cc->upper_diagonal &&
-                       cc->pivot_work,
-                   rc, GSN_ERR_MEMORY, done, "out of memory");
-    GSN_CHECK_GOTO(klu_extract(numeric, symbolic, Lp, Li, Lx, Up, Ui, Ux, NULL,
-                               NULL, NULL, cc->pivot_row, cc->column_order,
-                               cc->row_scale, NULL, common),
-                   rc, GSN_ERR_NUMERICAL, done,
-                   "the boundary factors could not be read (KLU status %d)",
-                   common->status);
-    /* L: columns ascending, the unit diagonal left out. */
-    for (int k = 0; k < n; ++k) {
-        int at = cc->lower_offset[k];
-        for (int p = Lp[k]; p < Lp[k + 1]; ++p)
-            if (Li[p] != k) {
-                cc->lower_row[at] = Li[p];
-                cc->lower_value[at++] = Lx[p];
-            }
-        cc->lower_offset[k + 1] = at;
+    GSN_CHECK(cc->pivot && cc->super_column && cc->super_row_offset &&
+                  cc->super_value_offset && cc->pivot_work,
+              GSN_ERR_MEMORY, "out of memory");
+    memcpy(cc->pivot, perm, sizeof(int) * (size_t)n);
+    size_t values = 0;
+    int below = 0;
+    cc->super_row_offset[0] = 0;
+    cc->super_value_offset[0] = 0;
+    for (int k = 0; k < ns; ++k) {
+        int w = super[k + 1] - super[k], h = pi[k + 1] - pi[k] - w;
+        cc->super_column[k] = super[k];
+        below += h;
+        values += (size_t)w * (size_t)(w + 1) / 2 + (size_t)h * (size_t)w;
+        cc->super_row_offset[k + 1] = below;
+        cc->super_value_offset[k + 1] = values;
     }
-    /* U: columns descending (the order of the backward solve), the
-     * diagonal apart. */
-    for (int j = 0; j < n; ++j) {
-        int k = n - 1 - j, at = cc->upper_offset[j];
-        for (int p = Up[k]; p < Up[k + 1]; ++p) {
-            if (Ui[p] == k) {
-                cc->upper_diagonal[k] = Ux[p];
-                continue;
-            }
-            cc->upper_row[at] = Ui[p];
-            cc->upper_value[at++] = Ux[p];
+    cc->super_column[ns] = super[ns];
+    cc->super_row = malloc(sizeof(int) * (below ? (size_t)below : 1));
+    cc->super_value = malloc(sizeof(double) * (values ? values : 1));
+    GSN_CHECK(cc->super_row && cc->super_value, GSN_ERR_MEMORY,
+              "out of memory");
+    for (int k = 0; k < ns; ++k) {
+        int w = super[k + 1] - super[k], nr = pi[k + 1] - pi[k];
+        const double *X = x + px[k];
+        double *v = cc->super_value + cc->super_value_offset[k];
+        for (int r = 0; r < w; ++r) {
+            for (int c = 0; c < r; ++c)
+                *v++ = X[r + (size_t)c * nr];
+            GSN_CHECK(X[r + (size_t)r * nr] > 0.0, GSN_ERR_NUMERICAL,
+                      "the boundary factor has a zero pivot");
+            *v++ = 1.0 / X[r + (size_t)r * nr];
         }
-        cc->upper_offset[j + 1] = at;
-        GSN_CHECK_GOTO(cc->upper_diagonal[k] != 0.0, rc, GSN_ERR_NUMERICAL,
-                       done, "the boundary factor U has a zero pivot");
+        for (int r = w; r < nr; ++r) {
+            cc->super_row[cc->super_row_offset[k] + r - w] = rows[pi[k] + r];
+            for (int c = 0; c < w; ++c)
+                *v++ = X[r + (size_t)c * nr];
+        }
     }
-done:
-    free(Lp);
-    free(Up);
-    free(Li);
-    free(Ui);
-    free(Lx);
-    free(Ux);
-    return rc;
+    return GSN_OK;
 }
 
-/* x = S^-1 b in place, with the copied factors: y = P (R \ b),
- * L U z = y, x = Q z. Columns of L then of U (last first), each read once
- * in storage order. */
+/* sum_c a[c] b[c], c < w, in four interleaved partial sums (a fixed
+ * order: the same bits on every run) so that the multiply-adds do not wait
+ * for each other. */
+static inline double dot(const double *restrict a, const double *restrict b,
+                         int w)
+{
+    double t0 = 0.0, t1 = 0.0, t2 = 0.0, t3 = 0.0;
+    int c = 0;
+    for (; c + 3 < w; c += 4) {
+        t0 += a[c] * b[c];
+        t1 += a[c + 1] * b[c + 1];
+        t2 += a[c + 2] * b[c + 2];
+        t3 += a[c + 3] * b[c + 3];
+    }
+    for (; c < w; ++c)
+        t0 += a[c] * b[c];
+    return (t0 + t1) + (t2 + t3);
+}
+
+/* x = S^-1 b in place, with the copied factor: y = P b, L z = y,
+ * L^T w = z, x = P^T w; by supernodes, forward then backward, each
+ * value read in storage order. The rows below a block are taken four at a
+ * time (independent sums forward, one pass over z backward). */
 static void factor_solve(struct component_constraint *cc, double *x)
 {
-    const int n = cc->count;
+    const int n = cc->count, ns = cc->super_count;
     double *restrict y = cc->pivot_work;
+    const double *restrict value = cc->super_value;
+    const int *restrict row = cc->super_row;
     for (int k = 0; k < n; ++k)
-        y[k] = x[cc->pivot_row[k]] / cc->row_scale[k];
-    for (int k = 0; k < n; ++k) {
-        const double yk = y[k];
-        for (int p = cc->lower_offset[k]; p < cc->lower_offset[k + 1]; ++p)
-            y[cc->lower_row[p]] -= cc->lower_value[p] * yk;
+        y[k] = x[cc->pivot[k]];
+    for (int s = 0; s < ns; ++s) {
+        const int k0 = cc->super_column[s], w = cc->super_column[s + 1] - k0;
+        const double *restrict v = value + cc->super_value_offset[s];
+        double *restrict z = y + k0;
+        for (int r = 0; r < w; ++r) {
+            z[r] = (z[r] - dot(v, z, r)) * v[r];
+            v += r + 1;
+        }
+        int e = cc->super_row_offset[s];
+        const int e1 = cc->super_row_offset[s + 1];
+        for (; e + 3 < e1; e += 4, v += 4 * w) {
+            double t0 = 0.0, t1 = 0.0, t2 = 0.0, t3 = 0.0;
+            for (int c = 0; c < w; ++c) {
+                t0 += v[c] * z[c];
+                t1 += v[w + c] * z[c];
+                t2 += v[2 * w + c] * z[c];
+                t3 += v[3 * w + c] * z[c];
+            }
+            y[row[e]] -= t0;
+            y[row[e + 1]] -= t1;
+            y[row[e + 2]] -= t2;
+            y[row[e + 3]] -= t3;
+        }
+        for (; e < e1; ++e, v += w)
+            y[row[e]] -= dot(v, z, w);
     }
-    for (int j = 0; j < n; ++j) {
-        const int k = n - 1 - j;
-        const double zk = y[k] / cc->upper_diagonal[k];
-        y[k] = zk;
-        for (int p = cc->upper_offset[j]; p < cc->upper_offset[j + 1]; ++p)
-            y[cc->upper_row[p]] -= cc->upper_value[p] * zk;
+    for (int s = ns - 1; s >= 0; --s) {
+        const int k0 = cc->super_column[s], w = cc->super_column[s + 1] - k0;
+        const int e0 = cc->super_row_offset[s],
+                  e1 = cc->super_row_offset[s + 1];
+        const double *restrict block = value + cc->super_value_offset[s];
+        const double *restrict v = block + (size_t)w * (size_t)(w + 1) / 2;
+        double *restrict z = y + k0;
+        int e = e0;
+        for (; e + 3 < e1; e += 4, v += 4 * w) {
+            const double y0 = y[row[e]], y1 = y[row[e + 1]];
+            const double y2 = y[row[e + 2]], y3 = y[row[e + 3]];
+            for (int c = 0; c < w; ++c)
+                z[c] -= (v[c] * y0 + v[w + c] * y1) +
+                        (v[2 * w + c] * y2 + v[3 * w + c] * y3);
+        }
+        for (; e < e1; ++e, v += w) {
+            const double ye = y[row[e]];
+            for (int c = 0; c < w; ++c)
+                z[c] -= v[c] * ye;
+        }
+        /* L^T of the block: rows from the last, each row's values once */
+        v = block + (size_t)w * (size_t)(w + 1) / 2;
+        for (int r = w - 1; r >= 0; --r) {
+            v -= r + 1;
+            const double zr = z[r] * v[r];
+            z[r] = zr;
+            for (int c = 0; c < r; ++c)
+                z[c] -= v[c] * zr;
+        }
     }
     for (int k = 0; k < n; ++k)
-        x[cc->column_order[k]] = y[k];
+        x[cc->pivot[k]] = y[k];
 }
 
-/* Factorizes S_c (KLU with AMD, partial pivoting, no BTF), checks its
- * condition, copies the factors for the step's solves and checks them on
- * one right-hand side; KLU's own objects are freed after. */
+/* S_c's lower triangle as CHOLMOD's symmetric sparse matrix (S is
+ * symmetric, but its rows are summed in an order that may differ in the
+ * last bit: the lower triangle of the rows stands for both). */
+static cholmod_sparse *lower_triangle(const struct component_constraint *cc,
+                                      cholmod_common *cm)
+{
+    int n = cc->count, entries = 0;
+    for (int i = 0; i < n; ++i)
+        for (int e = cc->s_offset[i]; e < cc->s_offset[i + 1]; ++e)
+            entries += cc->s_column[e] <= i;
+    cholmod_sparse *A = cholmod_allocate_sparse(
+        (size_t)n, (size_t)n, (size_t)entries, 0, 1, -1, CHOLMOD_REAL, cm);
+    int *fill = malloc(sizeof(int) * ((size_t)n + 1));
+    if (!A || !fill) {
+        free(fill);
+        cholmod_free_sparse(&A, cm);
+        return NULL;
+    }
+    int *Ap = A->p, *Ai = A->i;
+    double *Ax = A->x;
+    memset(Ap, 0, sizeof(int) * ((size_t)n + 1));
+    /* column j: the entries (i, j), i >= j, of the rows i */
+    for (int i = 0; i < n; ++i)
+        for (int e = cc->s_offset[i]; e < cc->s_offset[i + 1]; ++e)
+            if (cc->s_column[e] <= i)
+                Ap[cc->s_column[e] + 1]++;
+    for (int j = 0; j < n; ++j)
+        Ap[j + 1] += Ap[j];
+    memcpy(fill, Ap, sizeof(int) * (size_t)n);
+    for (int i = 0; i < n; ++i)
+        for (int e = cc->s_offset[i]; e < cc->s_offset[i + 1]; ++e)
+            if (cc->s_column[e] <= i) {
+                int at = fill[cc->s_column[e]]++;
+                Ai[at] = i;
+                Ax[at] = cc->s_entry[e];
+            }
+    free(fill);
+    return A;
+}
+
+/* CHOLMOD, set for a supernodal L L^T factor with its default ordering
+ * (AMD, or METIS where AMD fills in much) and no messages. */
+static void cholmod_begin(cholmod_common *cm)
+{
+    cholmod_start(cm);
+    cm->supernodal = CHOLMOD_SUPERNODAL;
+    cm->final_ll = 1;
+    cm->print = 0;
+    cm->error_handler = NULL;
+}
+
+/* Factorizes S_c (supernodal Cholesky, CHOLMOD), checks its condition,
+ * copies the factor for the step's solves and checks it on one right-hand
+ * side; CHOLMOD's own objects are freed after. */
 static int factorize(struct component_constraint *cc, char name)
 {
-    int n = cc->count, entries = cc->s_offset[n];
-    /* S in CSC (the transpose of the CSR rows; S is symmetric, but its
-     * rows are summed in an order that may differ in the last bit) */
-    int *column_offset = calloc((size_t)n + 1, sizeof(int));
-    int *row = malloc(sizeof(int) * (size_t)(entries ? entries : 1));
-    double *value = malloc(sizeof(double) * (size_t)(entries ? entries : 1));
+    int n = cc->count;
     double *b = malloc(sizeof(double) * (size_t)n);
-    klu_common common;
-    klu_symbolic *symbolic = NULL;
-    klu_numeric *numeric = NULL;
+    cholmod_common cm;
+    cholmod_begin(&cm);
+    cholmod_sparse *A = lower_triangle(cc, &cm);
+    cholmod_factor *L = NULL;
     int rc = GSN_OK;
-    GSN_CHECK_GOTO(column_offset && row && value && b, rc, GSN_ERR_MEMORY, done,
-                   "out of memory");
-    for (int e = 0; e < entries; ++e)
-        column_offset[cc->s_column[e] + 1]++;
-    for (int k = 0; k < n; ++k)
-        column_offset[k + 1] += column_offset[k];
-    for (int i = 0; i < n; ++i)
-        for (int e = cc->s_offset[i]; e < cc->s_offset[i + 1]; ++e) {
-            int at = column_offset[cc->s_column[e]]++;
-            row[at] = i;
-            value[at] = cc->s_entry[e];
-        }
-    for (int k = n; k > 0; --k)
-        column_offset[k] = column_offset[k - 1];
-    column_offset[0] = 0;
-    klu_defaults(&common);
-    common.btf = 0; /* one block: the copied factors need no F */
-    symbolic = klu_analyze(n, column_offset, row, &common);
-    GSN_CHECK_GOTO(symbolic, rc, GSN_ERR_NUMERICAL, done,
+    GSN_CHECK_GOTO(A && b, rc, GSN_ERR_MEMORY, done, "out of memory");
+    L = cholmod_analyze(A, &cm);
+    GSN_CHECK_GOTO(L, rc, GSN_ERR_NUMERICAL, done,
                    "the %c boundary matrix (%d particles) could not be "
-                   "analysed (KLU status %d)",
-                   name, n, common.status);
-    numeric = klu_factor(column_offset, row, value, symbolic, &common);
+                   "analysed (CHOLMOD status %d)",
+                   name, n, cm.status);
+    cholmod_factorize(A, L, &cm);
     GSN_CHECK_GOTO(
-        numeric && common.status == KLU_OK, rc, GSN_ERR_NUMERICAL, done,
+        cm.status == CHOLMOD_OK && L->minor == (size_t)n && L->is_super, rc,
+        GSN_ERR_NUMERICAL, done,
         "the %c boundary matrix C M^-1 C^T of %d constrained particles "
-        "is singular (KLU status %d); check for duplicate boundary "
+        "is singular (CHOLMOD status %d); check for duplicate boundary "
         "particles",
-        name, n, common.status);
-    klu_rcond(symbolic, numeric, &common);
-    GSN_CHECK_GOTO(common.rcond > CONSTRAINT_RCOND_LIMIT, rc, GSN_ERR_NUMERICAL,
-                   done,
+        name, n, cm.status);
+    double rcond = cholmod_rcond(L, &cm);
+    GSN_CHECK_GOTO(rcond > CONSTRAINT_RCOND_LIMIT, rc, GSN_ERR_NUMERICAL, done,
                    "the %c boundary matrix of %d constrained particles is "
                    "too badly conditioned (reciprocal condition %.3g)",
-                   name, n, common.rcond);
-    GSN_CALL_GOTO(copy_factors(cc, symbolic, numeric, &common), rc, done);
+                   name, n, rcond);
+    GSN_CALL_GOTO(copy_factor(cc, L), rc, done);
     /* The copy solves S x = b, b_i = 1 + i mod 7. */
     for (int i = 0; i < n; ++i)
         b[i] = 1.0 + i % 7;
@@ -325,13 +406,9 @@ static int factorize(struct component_constraint *cc, char name)
                    "the %c boundary solve has a backward error of %.3g", name,
                    worst);
 done:
-    if (numeric)
-        klu_free_numeric(&numeric, &common);
-    if (symbolic)
-        klu_free_symbolic(&symbolic, &common);
-    free(column_offset);
-    free(row);
-    free(value);
+    cholmod_free_factor(&L, &cm);
+    cholmod_free_sparse(&A, &cm);
+    cholmod_finish(&cm);
     free(b);
     return rc;
 }
@@ -427,12 +504,12 @@ done:
 /* Frees S_c and its factors (a new mass forms them again). */
 static void component_factors_free(struct component_constraint *cc)
 {
-    int **ints[] = {&cc->s_offset,     &cc->s_column,     &cc->pivot_row,
-                    &cc->column_order, &cc->lower_offset, &cc->lower_row,
-                    &cc->upper_offset, &cc->upper_row};
-    double **doubles[] = {&cc->s_entry,        &cc->row_scale,
-                          &cc->lower_value,    &cc->upper_value,
-                          &cc->upper_diagonal, &cc->pivot_work};
+    int **ints[] = {&cc->s_offset,     &cc->s_column,         &cc->pivot,
+                    &cc->super_column, &cc->super_row_offset, &cc->super_row};
+    double **doubles[] = {&cc->s_entry, &cc->super_value, &cc->pivot_work};
+    free(cc->super_value_offset);
+    cc->super_value_offset = NULL;
+    cc->super_count = 0;
     for (size_t i = 0; i < sizeof ints / sizeof ints[0]; ++i) {
         free(*ints[i]);
         *ints[i] = NULL;
@@ -700,8 +777,8 @@ done:
 
 /* The pattern of S_c for the n held particles of one component: J and K
  * couple where |X_J - X_K|_inf < 2 a_K, the held particles' kernels grown
- * twice (gsn_rk_neighbours); its entries and KLU's symbolic estimate of
- * the factors' (AMD ordering, as factorize uses). */
+ * twice (gsn_rk_neighbours); its entries and CHOLMOD's symbolic count of
+ * the supernodal factor's values (the ordering factorize uses). */
 static int pattern_size_estimate(int n, const double *position,
                                  const double *spacing, double support,
                                  double *entries, double *factor_entries)
@@ -720,17 +797,36 @@ static int pattern_size_estimate(int n, const double *position,
     for (int j = 0; j < n; ++j)
         gsn_rk_neighbours(rk, position + 3 * (size_t)j,
                           offset[j + 1] - offset[j], index + offset[j]);
-    klu_common common;
-    klu_defaults(&common);
-    common.btf = 0;
-    klu_symbolic *symbolic = klu_analyze(n, offset, index, &common);
-    GSN_CHECK_GOTO(symbolic, rc, GSN_ERR_MEMORY, done,
+    /* the pattern's lower triangle, as S's (values do not matter) */
+    size_t lower = 0;
+    for (int j = 0; j < n; ++j)
+        for (int e = offset[j]; e < offset[j + 1]; ++e)
+            lower += index[e] >= j;
+    cholmod_common cm;
+    cholmod_begin(&cm);
+    cholmod_factor *L = NULL;
+    cholmod_sparse *A = cholmod_allocate_sparse((size_t)n, (size_t)n, lower, 0,
+                                                1, -1, CHOLMOD_PATTERN, &cm);
+    GSN_CHECK_GOTO(A, rc, GSN_ERR_MEMORY, done_cholmod, "out of memory");
+    int *Ap = A->p, *Ai = A->i, at = 0;
+    for (int j = 0; j < n; ++j) {
+        Ap[j] = at;
+        for (int e = offset[j]; e < offset[j + 1]; ++e)
+            if (index[e] >= j)
+                Ai[at++] = index[e];
+    }
+    Ap[n] = at;
+    L = cholmod_analyze(A, &cm);
+    GSN_CHECK_GOTO(L, rc, GSN_ERR_MEMORY, done_cholmod,
                    "the boundary matrix's pattern (%d particles) could not "
-                   "be analysed (KLU status %d)",
-                   n, common.status);
+                   "be analysed (CHOLMOD status %d)",
+                   n, cm.status);
     *entries = offset[n];
-    *factor_entries = symbolic->lnz + symbolic->unz;
-    klu_free_symbolic(&symbolic, &common);
+    *factor_entries = (double)L->xsize;
+done_cholmod:
+    cholmod_free_factor(&L, &cm);
+    cholmod_free_sparse(&A, &cm);
+    cholmod_finish(&cm);
 done:
     gsn_rk_destroy(&rk);
     free(offset);

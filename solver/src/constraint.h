@@ -7,8 +7,9 @@
  * C_c the rows Psi_I(X_J), J in B_c, over all I: the constraints read
  * C_c f_c = prescribed. Every correction is the mass-orthogonal projection
  * onto them, f += M^-1 C^T lambda with (C M^-1 C^T) lambda = prescribed -
- * C f (S_c = C M^-1 C^T factorized once, KLU; its factors copied into plain
- * arrays that the solve of every step reads once in storage order). On
+ * C f (S_c = C M^-1 C^T factorized once, CHOLMOD's supernodal Cholesky;
+ * its factor copied into dense runs that the solve of every step reads
+ * once forward and once backward in storage order). On
  * the accelerations, C^T lambda is the force the supports apply: it does
  * no work on a motion the constraints allow, so the discrete system keeps
  * the symmetry of its stiffness and mass (docs/solver.md, "Boundary
@@ -131,11 +132,11 @@ int gsn_constraints_held(const struct gsn_model *m, const struct gsn_case *c,
                          const unsigned *released, int **facet_mask,
                          int **particle_mask);
 
-/* The sizes of S_c = C_c M^-1 C_c^T and of its LU factors, estimated
+/* The sizes of S_c = C_c M^-1 C_c^T and of its Cholesky factor, estimated
  * before any shape function exists (for the memory the solve states):
  * per component, entries[k] counts the pairs of held particles J, K with
  * |X_J - X_K|_inf < 2 a (their kernels may share a particle: the pattern
- * of S_c), and factor_entries[k] the fill of its factors. */
+ * of S_c), and factor_entries[k] the values of its supernodal factor. */
 int gsn_constraints_size_estimate(const struct gsn_model *m,
                                   const struct gsn_case *c, double entries[3],
                                   double factor_entries[3]);

@@ -1642,8 +1642,9 @@ static const char *method_text(const struct gsn_case *c, char *text,
  * docs/solver.md, "Memory"; within 7% with SCNI): 80 MB, per particle
  * 3.5 KB with SCNI or DNI, 8.4 KB with NSNI, 26.5 KB with MSCNI, or per
  * Gauss point 2.5 KB; and the exact boundary values' matrices, 24 bytes per
- * entry of S_c = C M^-1 C^T (two copies) and 40 per entry of its LU factors
- * (KLU's and the copy the steps read), both counted on their pattern
+ * entry of S_c = C M^-1 C^T (two copies) and 20 per value of its
+ * supernodal Cholesky factor (CHOLMOD's, the copy the steps read, and
+ * their row lists), both counted on their pattern
  * (gsn_constraints_size_estimate): a slab whose faces are all held has
  * most of its memory there. The rows of the shape functions grow with the
  * support's volume (and, taken as twice, with the quadratic basis). Of the
@@ -1695,7 +1696,7 @@ static int memory_estimate(const struct gsn_case *c, const struct gsn_model *m,
     double entries[3], factor_entries[3], held = 0.0;
     GSN_CALL(gsn_constraints_size_estimate(m, c, entries, factor_entries));
     for (int k = 0; k < 3; ++k)
-        held += 24.0 * entries[k] + 40.0 * factor_entries[k];
+        held += 24.0 * entries[k] + 20.0 * factor_entries[k];
     double support = c->kernel_support / 1.5;
     double scale = fmax(1.0, support * support * support) *
                    (c->kernel_basis_order == 2 ? 2.0 : 1.0);
