@@ -16,6 +16,10 @@
 # UPDATE_EVERY=K adds a reference-configuration update every K steps (issue
 # 15, point 4): the rate then includes them, and each run's line their count
 # and share of the solve.
+# After the medians: the parallel efficiency, the step's least data
+# (gsn_explicit_step_bytes) against STREAM triad measured on as many threads
+# (bench/stream.c) with the roof it puts on the rate, and the peak resident
+# memory a particle (GNU time).
 # MODEL=PATH solves that model.h5 instead of making one: to compare two
 # builds on one model (gmsh's HXT meshes differ from run to run, and so do
 # the costs they give; copy the first run's with KEEP_MODEL=PATH).
@@ -74,7 +78,7 @@ if [ -n "$loaded" ]; then
     }
     mv "$work/out" "$work/loaded"
     restart=--restart
-    echo "loaded to t = $loaded s (footing at $fast m/s): max damage $(tail -n 1 "$work/loaded/history.csv" | awk -F, '{print $(NF - 1)}')"
+    echo "loaded to t = $loaded s (footing at $fast m/s): max damage $(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "max_damage") c = i } END { print $c }' "$work/loaded/history.csv")"
 fi
 echo "geoscni solve $(basename "$case_file") ($(grep '^integration:' "$work/case.yaml" | sed 's/ *#.*//')), $steps steps, $runs runs per thread count ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
 for threads in $thread_counts; do
@@ -85,7 +89,7 @@ for threads in $thread_counts; do
             rm -rf "$work/out"
             cp -r "$work/loaded" "$work/out"
         fi
-        OMP_WAIT_POLICY=passive "$geoscni" solve "$work/case.yaml" -o "$work/out" -j "$threads" \
+        OMP_WAIT_POLICY=passive /usr/bin/time -f "peak %M KB" "$geoscni" solve "$work/case.yaml" -o "$work/out" -j "$threads" \
             $restart >"$work/log" 2>&1 || {
             echo "  $threads thread(s), run $i failed: $(grep 'error:' "$work/log")" >&2
             exit 1
@@ -96,10 +100,31 @@ for threads in $thread_counts; do
         updates=$(grep '^reference updates:' "$work/log" | sed 's/^reference updates: \([0-9]*\) .*, \([0-9.e+-]* s\), \([0-9.]*%\) of the solve.*/\1 updates, \2, \3 of the solve/')
         echo "  $threads thread(s), run $i: $rate particle-steps/s ($particles particles)${phases:+; $phases}${updates:+; $updates}"
         echo "$rate" >>"$work/rates.$threads"
+        bytes=$(sed -n 's/^step data: \([0-9.]*\) kB.*/\1/p' "$work/log")
+        peak=$(sed -n 's/^peak \([0-9]*\) KB$/\1/p' "$work/log")
         i=$((i + 1))
     done
 done
+# The medians; against one thread's, the parallel efficiency; against
+# STREAM triad on as many threads (bench/stream.c, measured now), the
+# memory traffic of the step's least data (gsn_explicit_step_bytes) and the
+# rate at which that data alone would fill the bandwidth (the roof).
+stream=$root/$build/bin/stream
+one=
 for threads in $thread_counts; do
     median=$(sort -g "$work/rates.$threads" | sed -n "$(((runs + 1) / 2))p")
-    echo "median, $threads thread(s): $median particle-steps/s"
+    [ "$threads" = 1 ] && one=$median
+    triad=
+    [ -x "$stream" ] && triad=$("$stream" "$threads" | sed -n 's/.*: \([0-9.]*\) GB\/s$/\1/p')
+    awk -v t="$threads" -v m="$median" -v one="$one" -v kb="${bytes:-0}" \
+        -v s="${triad:-0}" -v peak="${peak:-0}" -v n="$particles" 'BEGIN {
+        line = sprintf("median, %d thread(s): %.3g particle-steps/s", t, m)
+        if (one != "" && t > 1)
+            line = line sprintf(" (parallel efficiency %.2f)", m / (t * one))
+        if (kb > 0 && s > 0)
+            line = line sprintf("; step data %.2f kB a particle-step: %.1f GB/s, %.0f%% of STREAM triad %.1f GB/s, roof %.3g particle-steps/s",
+                kb, m * kb * 1e-6, 100 * m * kb * 1e-6 / s, s, s * 1e6 / kb)
+        if (peak > 0 && n > 0)
+            line = line sprintf("; peak memory %.1f kB a particle", 1.024 * peak / n)
+        print line }'
 done

@@ -1545,6 +1545,15 @@ static void reactions_and_energies(struct gsn_explicit *e, int i0, int i1,
     }
 }
 
+/* new_velocities and reactions_and_energies on one piece, while it is in
+ * cache (the steps that leave v to eq. (34) alone). */
+static void velocities_and_energies(struct gsn_explicit *e, int i0, int i1,
+                                    struct gsn_step_sums *sums)
+{
+    new_velocities(e, i0, i1, sums);
+    reactions_and_energies(e, i0, i1, sums);
+}
+
 /* The internal energy increments of points [p0, p1). */
 static void internal_work(struct gsn_explicit *e, int p0, int p1,
                           struct gsn_step_sums *sums)
@@ -1602,15 +1611,18 @@ int gsn_explicit_step(struct gsn_explicit *e)
             e->constraints, &e->quadrature->particle_values,
             GSN_FIELD_ACCELERATION, t1, e->new_acceleration, e->reaction));
     phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
-    step_loop(e, n, new_velocities);
-    phase_end(e, GSN_PHASE_UPDATES, &mark);
-    if (e->constraints && refresh)
+    struct gsn_step_sums sums;
+    if (e->constraints && refresh) {
+        step_loop(e, n, new_velocities);
+        phase_end(e, GSN_PHASE_UPDATES, &mark);
         GSN_CALL(gsn_constraints_apply(
             e->constraints, &e->quadrature->particle_values, GSN_FIELD_VELOCITY,
             t1, e->velocity, NULL));
-    phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
-
-    struct gsn_step_sums sums = step_loop(e, n, reactions_and_energies);
+        phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
+        sums = step_loop(e, n, reactions_and_energies);
+    } else {
+        sums = step_loop(e, n, velocities_and_energies);
+    }
     GSN_CHECK(sums.first_nonfinite < 0, GSN_ERR_NUMERICAL,
               "step %ld, t = %.6g s: the velocity of particle %d is not "
               "finite; the step is unstable: reduce time.step",
@@ -1624,6 +1636,19 @@ int gsn_explicit_step(struct gsn_explicit *e)
     e->time = t1;
     phase_end(e, GSN_PHASE_UPDATES, &mark);
     return GSN_OK;
+}
+
+double gsn_explicit_step_bytes(const struct gsn_explicit *e)
+{
+    const double word = sizeof(double);
+    const struct gsn_point_blocks *b = e->blocks;
+    double slots = b->block_slot[b->block_count];
+    double particles = 3 * (2 + 2 + 2) + 1 + 3 + 3 * 2;
+    double points = 9 * 2 + 6 * 2 + 2.0 * e->state_size + 9 + 1;
+    return (double)gsn_point_blocks_bytes(b) + slots * 3 * 2 * word +
+           e->particle_count * particles * word +
+           e->main_point_count * points * word +
+           (e->point_count - e->main_point_count) * 6 * 2 * word;
 }
 
 double gsn_explicit_time_of(const struct gsn_explicit *e, long step)

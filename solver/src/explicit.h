@@ -332,6 +332,15 @@ int gsn_explicit_refresh(struct gsn_explicit *e);
  * gsn_explicit_step calls it; tests drive it with prescribed motions. */
 int gsn_explicit_update_stress(struct gsn_explicit *e);
 
+/* The bytes a step must move at the least (the roofline's data, issue 17):
+ * every array it reads once and every array it changes written once: the
+ * packed rows and slot tables; the slot forces (written, then read by the
+ * reduction); per particle d, v, a (read and written), m and f_ext (read),
+ * f_int (written and read); per point H, the stress and the state (read
+ * and written), P w (written) and w (read). The code moves more (d_n kept,
+ * damping, the boundary solves); caches may hold some of it between steps. */
+double gsn_explicit_step_bytes(const struct gsn_explicit *e);
+
 /* The time of a step at the present time step (s). */
 double gsn_explicit_time_of(const struct gsn_explicit *e, long step);
 

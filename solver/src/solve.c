@@ -957,6 +957,11 @@ static void print_phases(const struct gsn_explicit *e)
            100.0 * t[GSN_PHASE_PASS] / total,
            100.0 * t[GSN_PHASE_CONSTRAINTS] / total,
            100.0 * t[GSN_PHASE_UPDATES] / total, total);
+    printf("step data: %.2f kB a particle-step at the least (the rows and "
+           "slot tables %.2f kB; gsn_explicit_step_bytes)\n",
+           1e-3 * gsn_explicit_step_bytes(e) / e->particle_count,
+           1e-3 * (double)gsn_point_blocks_bytes(e->blocks) /
+               e->particle_count);
 }
 
 /* The signal that asked the loop to stop (SIGINT, SIGTERM), or 0. */
