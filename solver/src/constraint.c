@@ -306,43 +306,36 @@ static void factor_solve(struct component_constraint *cc, double *x)
         x[cc->pivot[k]] = y[k];
 }
 
-/* S_c's lower triangle as CHOLMOD's symmetric sparse matrix (S is
- * symmetric, but its rows are summed in an order that may differ in the
- * last bit: the lower triangle of the rows stands for both). */
-static cholmod_sparse *lower_triangle(const struct component_constraint *cc,
+/* A symmetric matrix of n rows in CSR (offset, column; value, or NULL for
+ * the pattern) as CHOLMOD's lower triangle: column j holds row j's entries
+ * of column i >= j (the rows' upper halves stand for both, as S's rows are
+ * summed in orders that may differ in the last bit); NULL when out of
+ * memory. */
+static cholmod_sparse *lower_triangle(int n, const int *offset,
+                                      const int *column, const double *value,
                                       cholmod_common *cm)
 {
-    int n = cc->count, entries = 0;
-    for (int i = 0; i < n; ++i)
-        for (int e = cc->s_offset[i]; e < cc->s_offset[i + 1]; ++e)
-            entries += cc->s_column[e] <= i;
-    cholmod_sparse *A = cholmod_allocate_sparse(
-        (size_t)n, (size_t)n, (size_t)entries, 0, 1, -1, CHOLMOD_REAL, cm);
-    int *fill = malloc(sizeof(int) * ((size_t)n + 1));
-    if (!A || !fill) {
-        free(fill);
-        cholmod_free_sparse(&A, cm);
-        return NULL;
-    }
-    int *Ap = A->p, *Ai = A->i;
-    double *Ax = A->x;
-    memset(Ap, 0, sizeof(int) * ((size_t)n + 1));
-    /* column j: the entries (i, j), i >= j, of the rows i */
-    for (int i = 0; i < n; ++i)
-        for (int e = cc->s_offset[i]; e < cc->s_offset[i + 1]; ++e)
-            if (cc->s_column[e] <= i)
-                Ap[cc->s_column[e] + 1]++;
+    size_t entries = 0;
     for (int j = 0; j < n; ++j)
-        Ap[j + 1] += Ap[j];
-    memcpy(fill, Ap, sizeof(int) * (size_t)n);
-    for (int i = 0; i < n; ++i)
-        for (int e = cc->s_offset[i]; e < cc->s_offset[i + 1]; ++e)
-            if (cc->s_column[e] <= i) {
-                int at = fill[cc->s_column[e]]++;
-                Ai[at] = i;
-                Ax[at] = cc->s_entry[e];
+        for (int e = offset[j]; e < offset[j + 1]; ++e)
+            entries += column[e] >= j;
+    cholmod_sparse *A =
+        cholmod_allocate_sparse((size_t)n, (size_t)n, entries, 0, 1, -1,
+                                value ? CHOLMOD_REAL : CHOLMOD_PATTERN, cm);
+    if (!A)
+        return NULL;
+    int *Ap = A->p, *Ai = A->i, at = 0;
+    double *Ax = A->x;
+    for (int j = 0; j < n; ++j) {
+        Ap[j] = at;
+        for (int e = offset[j]; e < offset[j + 1]; ++e)
+            if (column[e] >= j) {
+                if (value)
+                    Ax[at] = value[e];
+                Ai[at++] = column[e];
             }
-    free(fill);
+    }
+    Ap[n] = at;
     return A;
 }
 
@@ -366,7 +359,8 @@ static int factorize(struct component_constraint *cc, char name)
     double *b = malloc(sizeof(double) * (size_t)n);
     cholmod_common cm;
     cholmod_begin(&cm);
-    cholmod_sparse *A = lower_triangle(cc, &cm);
+    cholmod_sparse *A =
+        lower_triangle(n, cc->s_offset, cc->s_column, cc->s_entry, &cm);
     cholmod_factor *L = NULL;
     int rc = GSN_OK;
     GSN_CHECK_GOTO(A && b, rc, GSN_ERR_MEMORY, done, "out of memory");
@@ -797,25 +791,12 @@ static int pattern_size_estimate(int n, const double *position,
     for (int j = 0; j < n; ++j)
         gsn_rk_neighbours(rk, position + 3 * (size_t)j,
                           offset[j + 1] - offset[j], index + offset[j]);
-    /* the pattern's lower triangle, as S's (values do not matter) */
-    size_t lower = 0;
-    for (int j = 0; j < n; ++j)
-        for (int e = offset[j]; e < offset[j + 1]; ++e)
-            lower += index[e] >= j;
     cholmod_common cm;
     cholmod_begin(&cm);
     cholmod_factor *L = NULL;
-    cholmod_sparse *A = cholmod_allocate_sparse((size_t)n, (size_t)n, lower, 0,
-                                                1, -1, CHOLMOD_PATTERN, &cm);
+    /* the pattern's lower triangle, as S's (values do not matter) */
+    cholmod_sparse *A = lower_triangle(n, offset, index, NULL, &cm);
     GSN_CHECK_GOTO(A, rc, GSN_ERR_MEMORY, done_cholmod, "out of memory");
-    int *Ap = A->p, *Ai = A->i, at = 0;
-    for (int j = 0; j < n; ++j) {
-        Ap[j] = at;
-        for (int e = offset[j]; e < offset[j + 1]; ++e)
-            if (index[e] >= j)
-                Ai[at++] = index[e];
-    }
-    Ap[n] = at;
     L = cholmod_analyze(A, &cm);
     GSN_CHECK_GOTO(L, rc, GSN_ERR_MEMORY, done_cholmod,
                    "the boundary matrix's pattern (%d particles) could not "
