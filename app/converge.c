@@ -348,6 +348,18 @@ int command_converge(const struct arguments *a)
                "stopped when run again\n",
                description, c.path, count, levels[0].spacing,
                levels[count - 1].spacing, ratio, outdir);
+    /* a softening law without a length has no converged peak */
+    for (int k = 0; k < c.material_count; ++k)
+        if (c.materials[k].has_damage &&
+            !(c.materials[k].damage_length > 0.0) &&
+            q.kind != GSN_QUANTITY_FACTOR_OF_SAFETY)
+            fprintf(stderr,
+                    "warning: %s:%d: the damage has no length: a softening "
+                    "band narrows with the spacing and the peak load may not "
+                    "converge (docs/converge.md); add 'length: L' (m) to "
+                    "damage: for damage that averages e_t over a ball of "
+                    "radius L, kept through the levels\n",
+                    c.path, c.materials[k].line.entry);
     for (int i = 0; i < count; ++i) {
         struct level *l = &levels[i];
         if (!a->quiet)

@@ -7,8 +7,10 @@
 # with it), then the check the issue asks for: the coarsest level the study
 # finds within the tolerance (2%) has its peak load within 2% of the finest
 # run's. Prints each study's report and the check; about 10 minutes a slope
-# on 2 cores.
-# Usage: bench/converge_slopes.sh [BUILD_DIR] [OUT] [CASES]
+# on 2 cores. LENGTH=L (m) gives the damage the length L (damage.length:
+# nonlocal damage, docs/material.md), INTEGRATION=... another integration.
+# Usage: [LENGTH=L] [INTEGRATION=...] bench/converge_slopes.sh [BUILD_DIR]
+#        [OUT] [CASES]
 #        (default build, out/converge, "slope_I_coarse slope_I_graded_coarse")
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -26,9 +28,14 @@ for name in $cases; do
     *) finest=$(sed -n 's/^  spacing: *\([0-9.]*\).*/\1/p' "$root/geometries/$name.yaml" | head -1) ;;
     esac
     # 0.2 m of settlement at 0.05 m/s after the 1 s ramp: t = 4.5 s
+    with_length= with_integration=
+    [ -z "${LENGTH:-}" ] || with_length="s|damage: {e0: \([0-9.]*\), ef: \([0-9.]*\)}|damage: {e0: \1, ef: \2, length: $LENGTH}|"
+    [ -z "${INTEGRATION:-}" ] || with_integration="s|^integration: .*|integration: $INTEGRATION|"
     sed -e "s|^geometry: *|geometry: $root/geometries/|" \
-        -e "s|^\( *end:\).*|\1 4.5|" \
+        -e "s|^\( *end:\).*|\1 4.5|" -e "$with_length" -e "$with_integration" \
         "$root/geometries/$name.yaml" >"$out/$name.yaml"
+    [ -z "${LENGTH:-}" ] || grep -q "length: $LENGTH" "$out/$name.yaml" ||
+        { echo "$name: no damage block to give the length" >&2; exit 2; }
     "$geoscni" converge "$out/$name.yaml" -o "$out/$name" --levels 5 \
         --finest "$finest" -q
     csv=$out/$name/converge.csv

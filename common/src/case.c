@@ -649,7 +649,7 @@ static int read_one_material(struct reader *r, const yaml_node_t *node,
                                        "damage",
                                        "drucker_prager",
                                        NULL};
-    static const char *const damage_keys[] = {"e0", "ef", NULL};
+    static const char *const damage_keys[] = {"e0", "ef", "length", NULL};
     char name[256], sub[160];
     GSN_CALL(check_keys(r, node, keys, context));
     m->line.entry = node_line(node);
@@ -683,6 +683,8 @@ static int read_one_material(struct reader *r, const yaml_node_t *node,
                   "%s:%d: '%s.e0' (%g) must be less than '%s.ef' (%g): "
                   "damage grows from e0 to ef",
                   r->path, line_e0, sub, m->damage_e0, sub, m->damage_ef);
+        GSN_CALL(
+            read_positive(r, damage, sub, "length", "m", 0, &m->damage_length));
         m->has_damage = 1;
     }
 
@@ -1443,7 +1445,10 @@ static void write_material(const struct gsn_material *m, const char *indent,
             "%sbulk_modulus: %.17g\n%sshear_modulus: %.17g\n",
             indent, m->density, indent, m->saturated_density, indent,
             m->bulk_modulus, indent, m->shear_modulus);
-    if (m->has_damage)
+    if (m->has_damage && m->damage_length > 0.0)
+        fprintf(out, "%sdamage: {e0: %.17g, ef: %.17g, length: %.17g}\n",
+                indent, m->damage_e0, m->damage_ef, m->damage_length);
+    else if (m->has_damage)
         fprintf(out, "%sdamage: {e0: %.17g, ef: %.17g}\n", indent, m->damage_e0,
                 m->damage_ef);
     if (m->has_plasticity && m->dp_from_mohr_coulomb)

@@ -2,6 +2,7 @@
 #include "explicit.h"
 #include "geoscni/error.h"
 #include "geoscni/tensor.h"
+#include "nonlocal.h"
 #include "point_blocks.h"
 #include "stress_update.h"
 
@@ -98,6 +99,7 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     free(e->displacement_gradient);
     free(e->slot_force);
     gsn_point_blocks_destroy(&e->blocks);
+    gsn_nonlocal_destroy(&e->nonlocal);
     free(e->domain_offset);
     free(e->domain_point);
     free(e->domain_weight);
@@ -363,6 +365,38 @@ static int point_soil(struct gsn_explicit *e, const struct gsn_case *c)
     return GSN_OK;
 }
 
+/* The averaging rows of nonlocal damage when a soil has damage.length,
+ * on the points' reference positions. */
+static int build_nonlocal(struct gsn_explicit *e)
+{
+    const struct gsn_material_set *set = e->materials;
+    int any = 0;
+    for (int k = 0; k < set->count; ++k)
+        any |= set->parameters[k]->has_damage &&
+               set->parameters[k]->damage_length > 0.0;
+    if (!any)
+        return GSN_OK;
+    e->strain_offset =
+        gsn_material_state_offset(e->material->ops, "equivalent_strain");
+    e->nonlocal_offset =
+        gsn_material_state_offset(e->material->ops, "nonlocal_strain");
+    GSN_CHECK(e->strain_offset >= 0 && e->nonlocal_offset >= 0, GSN_ERR_INPUT,
+              "damage.length: model %s has no nonlocal damage",
+              e->material->ops->name);
+    double *radius = NULL;
+    GSN_CALL(alloc_array((void **)&radius, (size_t)e->main_point_count,
+                         sizeof(double)));
+    for (int p = 0; p < e->main_point_count; ++p) {
+        const struct gsn_material *soil = set->parameters[e->point_material[p]];
+        radius[p] = soil->has_damage ? soil->damage_length : 0.0;
+    }
+    int rc =
+        gsn_nonlocal_create(e->main_point_count, e->quadrature->point_position,
+                            e->quadrature->point_weight, radius, &e->nonlocal);
+    free(radius);
+    return rc;
+}
+
 int gsn_explicit_initialize_material(struct gsn_explicit *e)
 {
     const unsigned char *k = e->point_material;
@@ -486,6 +520,7 @@ int gsn_explicit_create(const struct gsn_model *m,
     }
     GSN_CALL_GOTO(build_domains(e), rc, fail);
     GSN_CALL_GOTO(point_soil(e, c), rc, fail);
+    GSN_CALL_GOTO(build_nonlocal(e), rc, fail);
     for (size_t p = 0; p < main; ++p)
         for (int a = 0; a < 9; ++a)
             e->reference_gradient[9 * p + a] = a % 4 == 0 ? 1.0 : 0.0;
@@ -1397,6 +1432,15 @@ int gsn_explicit_update_stress(struct gsn_explicit *e)
         /* clang-format on */
         for (int k = 0; k < e->blocks->block_count; ++k)
             failed |= block_step(e, k) != GSN_OK;
+        /* the next step's damage from this step's e_t (nonlocal.h) */
+        if (e->nonlocal) {
+            const size_t stride = (size_t)e->state_size;
+#pragma omp for
+            for (int p = 0; p < e->main_point_count; ++p)
+                gsn_nonlocal_average(
+                    e->nonlocal, p, e->state + e->strain_offset, stride,
+                    &e->state[stride * (size_t)p + e->nonlocal_offset]);
+        }
 #pragma omp for
         for (int i = 0; i < e->particle_count; ++i)
             gsn_point_blocks_reduce_one(e->blocks, i, e->slot_force,

@@ -142,6 +142,10 @@ struct gsn_explicit {
                                         zero at every coefficient, -1 none */
     int plastic_offset;              /* equivalent_plastic_strain in the
                                         state, -1 without plasticity */
+    /* damage.length (nonlocal.h): the averaging rows of the main points,
+     * NULL without a length; the state offsets of e_t and its average */
+    struct gsn_nonlocal *nonlocal;
+    int strain_offset, nonlocal_offset;
     /* The main points of each particle's nodal domain (offset particles
      * + 1), what the particle reports of the points' stress and state (and
      * the tractions of gsn_explicit_surface_force): nodal integration, the

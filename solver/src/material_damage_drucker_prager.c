@@ -37,7 +37,8 @@ enum {
     DDP_EQUIVALENT_STRAIN = 1,
     DDP_EQUIVALENT_PLASTIC_STRAIN = 2,
     DDP_EFFECTIVE_STRESS = 3,
-    DDP_STATE_SIZE = 9
+    DDP_NONLOCAL_STRAIN = 9,
+    DDP_STATE_SIZE = 10
 };
 
 static const struct gsn_state_variable ddp_state_variables[] = {
@@ -49,12 +50,17 @@ static const struct gsn_state_variable ddp_state_variables[] = {
     {"effective_stress", GSN_STATE_TENSOR, "Pa",
      "effective Cauchy stress (1 - zeta)^-1 sigma, seed paper eq. (6), "
      "Voigt xx yy zz xy yz xz, tension positive"},
+    {"nonlocal_strain", GSN_STATE_SCALAR, "-",
+     "with damage.length L: e_t averaged over a ball of radius L at the end "
+     "of the last step, the argument of eq. (7) (Pijaudier-Cabot & Bazant "
+     "1987); 0 without"},
 };
 
 struct ddp {
     double K, mu;       /* Pa */
     int has_damage;     /* eqs. (6)-(7) */
     double e0, ef;      /* damage thresholds, - */
+    double length;      /* nonlocal radius L, m; 0: the local law */
     int has_plasticity; /* eq. (8) */
     double alpha, R;    /* yield function, -, Pa */
     double beta;        /* dilatancy of the potential, - */
@@ -76,6 +82,10 @@ static int ddp_create(const struct gsn_material *p, void **context)
                   "damage_drucker_prager: damage thresholds need "
                   "0 < e0 < ef (got e0 = %g, ef = %g)",
                   p->damage_e0, p->damage_ef);
+    GSN_CHECK(isfinite(p->damage_length) && p->damage_length >= 0.0,
+              GSN_ERR_INPUT,
+              "damage_drucker_prager: damage length must be >= 0 m (got %g)",
+              p->damage_length);
     if (p->has_plasticity) {
         GSN_CHECK(isfinite(p->dp_alpha) && p->dp_alpha >= 0.0, GSN_ERR_INPUT,
                   "damage_drucker_prager: alpha must be >= 0 (got %g)",
@@ -95,6 +105,7 @@ static int ddp_create(const struct gsn_material *p, void **context)
     m->has_damage = p->has_damage != 0;
     m->e0 = p->damage_e0;
     m->ef = p->damage_ef;
+    m->length = p->damage_length;
     m->has_plasticity = p->has_plasticity != 0;
     m->alpha = p->dp_alpha;
     m->R = p->dp_R;
@@ -114,6 +125,7 @@ static int ddp_initialize(const void *context, size_t count,
         q[DDP_EQUIVALENT_PLASTIC_STRAIN] = 0.0;
         for (int a = 0; a < 6; ++a)
             q[DDP_EFFECTIVE_STRESS + a] = stress[6 * i + a];
+        q[DDP_NONLOCAL_STRAIN] = 0.0;
     }
     return GSN_OK;
 }
@@ -180,7 +192,9 @@ static int ddp_update(const void *context, size_t count,
         q[DDP_EQUIVALENT_STRAIN] = e_t;
         double zeta = 0.0;
         if (m->has_damage) {
-            zeta = ddp_damage(m, e_t);
+            /* with damage.length, e_t averaged over it (nonlocal.h) */
+            zeta =
+                ddp_damage(m, m->length > 0.0 ? q[DDP_NONLOCAL_STRAIN] : e_t);
             if (zeta < q[DDP_DAMAGE])
                 zeta = q[DDP_DAMAGE];
         }

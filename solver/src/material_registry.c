@@ -153,6 +153,7 @@ static int interface_soil(struct gsn_material_set *set, const char *kind,
     soil.has_damage = w->has_damage;
     soil.damage_e0 = w->damage_e0;
     soil.damage_ef = w->damage_ef;
+    soil.damage_length = w->damage_length;
     soil.has_plasticity = w->has_plasticity;
     soil.dp_alpha = w->dp_alpha;
     soil.dp_R = w->dp_R;

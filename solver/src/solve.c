@@ -16,6 +16,7 @@
 #include "geoscni/solver.h"
 #include "geoscni/tensor.h"
 #include "material.h"
+#include "nonlocal.h"
 #include "overburden.h"
 #include "reference.h"
 
@@ -1715,6 +1716,16 @@ static int memory_estimate(const struct gsn_case *c, const struct gsn_model *m,
                           fmax(1.0, (double)m->particle_count) * 36.0 * scale +
                       700.0 * m->particle_count;
     double running = points * per_point * scale + held;
+    /* nonlocal damage: each particle's ball of the longest damage.length
+     * (nonlocal.h), 12 bytes a neighbour */
+    double length = 0.0, balls = 0.0;
+    for (int k = 0; k < c->material_count; ++k)
+        if (c->materials[k].has_damage)
+            length = fmax(length, c->materials[k].damage_length);
+    for (int p = 0; length > 0.0 && p < m->particle_count; ++p)
+        balls += fmin((double)m->particle_count,
+                      4.18879 * length * length * length / m->volume[p]);
+    running += gsn_nonlocal_bytes(m->particle_count, balls);
     *bytes = 80e6 + fmax(building, running);
     return GSN_OK;
 }
@@ -1811,6 +1822,19 @@ static void print_site(const struct run *r)
                : c->water.triangle_count ? "a table spread over the site"
                                          : "a section's table",
                1e-3 * c->water.unit_weight, 1e-3 * largest);
+    }
+    const struct gsn_nonlocal *nl = r->reference->loop->nonlocal;
+    if (nl) {
+        double length = 0.0;
+        for (int k = 0; k < set->count; ++k)
+            length = fmax(length, set->parameters[k]->damage_length);
+        double mean = (double)nl->offset[nl->point_count] / nl->point_count;
+        printf("damage: nonlocal, e_t averaged over %.4g m: %.0f points a "
+               "ball on average, %d at most%s\n",
+               length, mean, nl->max_row,
+               mean < 8.0 ? " (fewer than 8: the law is nearly local at this "
+                            "spacing; refine, or give a longer length)"
+                          : "");
     }
 }
 

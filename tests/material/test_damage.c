@@ -4,7 +4,8 @@
  * References (REFERENCES.md, "Damage"): zeta = 0.20080, 0.80321, 0.98394 at
  * e_t = 0.025, 0.1, 1.0 (e_t = |eps| on a uniaxial-strain path); elastic
  * simple-shear cycles of amplitude 0.01 add 0.007071 per quarter cycle:
- * zeta = 0.0574, 0.2941, 0.6490 after 3, 4, 8 quarter cycles. */
+ * zeta = 0.0574, 0.2941, 0.6490 after 3, 4, 8 quarter cycles.
+ * With damage.length, eq. (7) takes the nonlocal strain. */
 #include "material_testing.h"
 
 static double zeta_closed_form(double e_t)
@@ -149,6 +150,36 @@ static void test_elastic_cycles(void)
     gsn_material_model_destroy(&m);
 }
 
+/* With damage.length the damage follows the nonlocal strain the solver
+ * writes into the state (nonlocal.h), not the point's own e_t: a point
+ * strained past ef keeps zeta = 0 while its average is 0, then takes
+ * zeta(average) for the averages 0.025 and 0.1, and never decreases. */
+static void test_nonlocal_argument(void)
+{
+    struct gsn_material par = paper_material(1, 1, PAPER_ALPHA);
+    par.damage_length = 0.7;
+    struct gsn_material_model *m = model_make("damage_drucker_prager", &par);
+    struct point p;
+    point_init(&p, m, NULL);
+    const int average = gsn_material_state_offset(m->ops, "nonlocal_strain");
+    TEST_TRUE(average >= 0);
+    TEST_TRUE(p.state[average] == 0.0);
+    const double de[6] = {0, 0, 0, 0.1, 0, 0};
+    for (int n = 0; n < 40; ++n)
+        point_strain_step(&p, de);
+    TEST_TRUE(point_state(&p, "equivalent_strain") > PAPER_EF);
+    TEST_TRUE(point_state(&p, "damage") == 0.0);
+    const double given[3] = {0.025, 0.1, 0.05};
+    const double expected[3] = {zeta_closed_form(0.025), zeta_closed_form(0.1),
+                                zeta_closed_form(0.1)};
+    for (int k = 0; k < 3; ++k) {
+        p.state[average] = given[k];
+        point_strain_step(&p, de);
+        TEST_TRUE(point_state(&p, "damage") == expected[k]);
+    }
+    gsn_material_model_destroy(&m);
+}
+
 int main(void)
 {
     test_begin();
@@ -157,5 +188,6 @@ int main(void)
     test_full_damage();
     test_never_decreases();
     test_elastic_cycles();
+    test_nonlocal_argument();
     return test_end("material_damage");
 }

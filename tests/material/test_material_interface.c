@@ -96,13 +96,13 @@ static void test_elastic_step(void)
     struct gsn_material_model *el = model_make("elastic", &p);
     struct gsn_material_model *dp = model_make("damage_drucker_prager", &p);
     enum { N = 5 };
-    double de[6 * N], s_el[6 * N], s_dp[6 * N], q_dp[9 * N];
+    double de[6 * N], s_el[6 * N], s_dp[6 * N], q_dp[10 * N];
     for (int i = 0; i < 6 * N; ++i) {
         de[i] = 1e-4 * sin(1.0 + 0.7 * i);
         s_el[i] = 1e5 * cos(0.3 * i);
     }
     memcpy(s_dp, s_el, sizeof s_el);
-    TEST_INT(dp->ops->state_size, 9);
+    TEST_INT(dp->ops->state_size, 10);
     TEST_INT(gsn_material_initialize(dp, N, s_dp, q_dp), GSN_OK);
     TEST_INT(gsn_material_update(el, N, de, s_el, NULL), GSN_OK);
     TEST_INT(gsn_material_update(dp, N, de, s_dp, q_dp), GSN_OK);
@@ -118,8 +118,8 @@ static void test_elastic_step(void)
             TEST_NEAR(s_dp[6 * i + a], expected, 1e-9);
         }
         /* e_t = ||de|| after one step (eq. (7)) */
-        TEST_REL(q_dp[9 * i + 1], gsn_voigt_norm(d), 1e-15);
-        TEST_INT(q_dp[9 * i + 0] == 0.0, 1);
+        TEST_REL(q_dp[10 * i + 1], gsn_voigt_norm(d), 1e-15);
+        TEST_INT(q_dp[10 * i + 0] == 0.0, 1);
     }
     gsn_material_model_destroy(&el);
     gsn_material_model_destroy(&dp);
@@ -176,7 +176,7 @@ static void test_batch(void)
     struct gsn_material p = paper_material(1, 1, 0.03);
     struct gsn_material_model *m = model_make("damage_drucker_prager", &p);
     enum { N = 150 };
-    static double G[9 * N], s[6 * N], q[9 * N], de[6 * N];
+    static double G[9 * N], s[6 * N], q[10 * N], de[6 * N];
     for (int i = 0; i < 9 * N; ++i)
         G[i] = 0.02 * sin(0.37 * i);
     for (int i = 0; i < 6 * N; ++i)
@@ -190,8 +190,8 @@ static void test_batch(void)
         point_gradient_step(&points[i], G + 9 * i);
         for (int a = 0; a < 6; ++a)
             TEST_TRUE(points[i].stress[a] == s[6 * i + a]);
-        for (int k = 0; k < 9; ++k)
-            TEST_TRUE(points[i].state[k] == q[9 * i + k]);
+        for (int k = 0; k < 10; ++k)
+            TEST_TRUE(points[i].state[k] == q[10 * i + k]);
         double sym[6];
         gsn_matrix_sym_to_voigt(G + 9 * i, sym);
         for (int a = 0; a < 6; ++a)

@@ -3,7 +3,7 @@
 # default, for any thread count. cases/punch.yaml (gmsh's default Delaunay
 # mesher, damage + Drucker-Prager, MSCNI, failed particles) run from its
 # geometry on 1 and on 2 threads, and again with NSNI and
-# reference-configuration updates: every dataset of model.h5 and results.h5
+# reference-configuration updates and nonlocal damage: every dataset of model.h5 and results.h5
 # (the checkpoint too: a complete run's is its last step's) and every byte
 # of history.csv are identical. A changed bit anywhere (a mesher that varies
 # from run to run, a reduction whose order follows the threads) fails it.
@@ -49,10 +49,12 @@ PY
 
 cp cases/punch.geo "$out/"
 sed 's|^geometry: .*|geometry: punch.geo|' cases/punch.yaml >"$out/punch.yaml"
-# (the slope cases' NSNI; to 0.4 m, before particles crush under the edge)
+# (the slope cases' NSNI; to 0.4 m, before particles crush under the edge;
+# nonlocal damage over 0.5 m, its averages rebuilt at each update)
 {
     sed -e 's|^integration: .*|integration: {method: scni, stabilization: nsni, coefficient: 0.1}|' \
-        -e 's|end: 1.4|end: 1.0|' "$out/punch.yaml"
+        -e 's|end: 1.4|end: 1.0|' \
+        -e 's|damage: {e0: 0.02, ef: 5.0}|damage: {e0: 0.02, ef: 5.0, length: 0.5}|' "$out/punch.yaml"
     echo "kinematics: large"
     echo "reference_update: {strain: 0.1, min_steps: 20}"
 } >"$out/updates.yaml"

@@ -124,10 +124,16 @@ struct gsn_material {
     int has_damage;       /* seed eqs. (6)-(7) */
     double damage_e0;     /* initial damage threshold, - */
     double damage_ef;     /* final damage threshold, - */
-    int has_plasticity;   /* seed eq. (8) */
-    double dp_alpha;      /* friction coefficient alpha, - */
-    double dp_R;          /* cohesion-like R, Pa */
-    double dp_dilatancy;  /* beta of the potential; = alpha: associated */
+    /* crack band (damage.length; Bazant & Oh 1983): the band width, m, at
+     * which e0 and ef hold; at spacing h the softening follows the band's
+     * opening h (e_t - e0), so that the energy a band dissipates does not
+     * depend on the spacing (material_damage_drucker_prager.c). 0: the
+     * seed paper's local law. */
+    double damage_length;
+    int has_plasticity;  /* seed eq. (8) */
+    double dp_alpha;     /* friction coefficient alpha, - */
+    double dp_R;         /* cohesion-like R, Pa */
+    double dp_dilatancy; /* beta of the potential; = alpha: associated */
     /* given in engineers' terms (drucker_prager: {cohesion, ...}): those
      * values, from which alpha, R and beta were fitted; else 0 */
     int dp_from_mohr_coulomb;
