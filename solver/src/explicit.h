@@ -112,6 +112,10 @@ struct gsn_explicit {
 
     double kinetic_energy, internal_energy, external_work; /* J */
     double phase_seconds[GSN_PHASE_COUNT]; /* wall time of the steps, s */
+    /* of it, spent factorizing the boundary matrices (the first solve
+     * after a restart or new masses), taken out of
+     * phase_seconds[GSN_PHASE_CONSTRAINTS], s */
+    double factor_seconds;
     double damping_work;   /* J dissipated by the local damping */
     double damping_local;  /* Cundall's coefficient (case damping.local) */
     int damping_net;       /* 1: the damping acts on f_ext - f_int plus the

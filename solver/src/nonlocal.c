@@ -36,18 +36,17 @@ static int average_row(const struct gsn_rk *rk, int p, const double *position,
     if (!(L > 0.0))
         return 0;
     const double *x = position + 3 * (size_t)p;
-    int found =
-        gsn_rk_neighbours(rk, x, GSN_RK_MAX_NEIGHBOURS, candidate);
+    int found = gsn_rk_neighbours(rk, x, GSN_RK_MAX_NEIGHBOURS, candidate);
     if (found > GSN_RK_MAX_NEIGHBOURS)
         return -1;
     int count = 0;
     double sum = 0.0;
     for (int c = 0; c < found; ++c) {
         const double *y = position + 3 * (size_t)candidate[c];
-        double r2 = ((x[0] - y[0]) * (x[0] - y[0]) +
-                     (x[1] - y[1]) * (x[1] - y[1]) +
-                     (x[2] - y[2]) * (x[2] - y[2])) /
-                    (L * L);
+        double r2 =
+            ((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+             (x[2] - y[2]) * (x[2] - y[2])) /
+            (L * L);
         if (r2 >= 1.0)
             continue;
         double w = (1.0 - r2) * (1.0 - r2) * volume[candidate[c]];
@@ -98,9 +97,9 @@ int gsn_nonlocal_create(int point_count, const double *position,
                     count = average_row(rk, p, position, volume, radius,
                                         candidate, NULL, NULL);
                 else if (candidate)
-                    count = average_row(
-                        rk, p, position, volume, radius, candidate,
-                        n->index + n->offset[p], n->weight + n->offset[p]);
+                    count = average_row(rk, p, position, volume, radius,
+                                        candidate, n->index + n->offset[p],
+                                        n->weight + n->offset[p]);
                 if (count < 0) {
 #pragma omp critical(gsn_nonlocal_failure)
                     if (too_many < 0 || p < too_many)
@@ -119,16 +118,15 @@ int gsn_nonlocal_create(int point_count, const double *position,
         if (pass == 1)
             break;
         for (int p = 0; p < point_count; ++p) {
-            n->max_row = n->offset[p + 1] > n->max_row ? n->offset[p + 1]
-                                                       : n->max_row;
+            n->max_row =
+                n->offset[p + 1] > n->max_row ? n->offset[p + 1] : n->max_row;
             n->offset[p + 1] += n->offset[p];
         }
         size_t entries = (size_t)n->offset[point_count];
         n->index = malloc((entries ? entries : 1) * sizeof *n->index);
         n->weight = malloc((entries ? entries : 1) * sizeof *n->weight);
         GSN_CHECK_GOTO(n->index && n->weight, rc, GSN_ERR_MEMORY, done,
-                       "nonlocal damage: cannot allocate %zu entries",
-                       entries);
+                       "nonlocal damage: cannot allocate %zu entries", entries);
     }
 done:
     gsn_rk_destroy(&rk);

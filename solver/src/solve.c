@@ -954,10 +954,14 @@ static void print_phases(const struct gsn_explicit *e)
     if (!(total > 0.0))
         return;
     printf("step time: row pass %.0f%%, boundary solves %.0f%%, updates "
-           "%.0f%% of %.3g s\n",
+           "%.0f%% of %.3g s",
            100.0 * t[GSN_PHASE_PASS] / total,
            100.0 * t[GSN_PHASE_CONSTRAINTS] / total,
            100.0 * t[GSN_PHASE_UPDATES] / total, total);
+    if (e->factor_seconds > 0.0)
+        printf("; besides, %.3g s factorizing the boundary matrices",
+               e->factor_seconds);
+    printf("\n");
     printf("step data: %.2f kB a particle-step at the least (the rows and "
            "slot tables %.2f kB; gsn_explicit_step_bytes)\n",
            1e-3 * gsn_explicit_step_bytes(e) / e->particle_count,

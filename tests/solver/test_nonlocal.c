@@ -88,7 +88,8 @@ int main(void)
     struct gsn_nonlocal *flat = NULL;
     TEST_INT(gsn_nonlocal_create(N, x, volume, radius, &flat), GSN_OK);
     for (int q = 0; q < N; ++q)
-        field[q] = 1.0 + 0.3 * x[3 * q] - 0.2 * x[3 * q + 1] + 0.1 * x[3 * q + 2];
+        field[q] =
+            1.0 + 0.3 * x[3 * q] - 0.2 * x[3 * q + 1] + 0.1 * x[3 * q + 2];
     double worst_linear = 0.0, jitter_linear = 0.0;
     int interior_count = 0;
     for (int p = 0; p < N; ++p) {
