@@ -96,6 +96,7 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         free(arrays[i]);
     free(e->point_failed);
+    free(e->increment);
     free(e->displacement_gradient);
     free(e->slot_force);
     gsn_point_blocks_destroy(&e->blocks);
@@ -498,6 +499,13 @@ int gsn_explicit_create(const struct gsn_model *m,
                     3 * (size_t)e->blocks->block_slot[e->blocks->block_count],
                     sizeof(double)),
         rc, fail);
+    {
+        size_t bytes = 4 * sizeof(double) * (n3 / 3 ? n3 / 3 : 1);
+        e->increment = aligned_alloc(64, bytes);
+        GSN_CHECK_GOTO(e->increment, rc, GSN_ERR_MEMORY, fail,
+                       "cannot allocate %zu bytes of increments", bytes);
+        memset(e->increment, 0, bytes);
+    }
     {
         /* 64-byte aligned, so the 4-double slots never straddle a line */
         size_t bytes = sizeof(double) * (size_t)e->thread_count *
@@ -1150,19 +1158,30 @@ static double *block_work(const struct gsn_explicit *e)
                            block_work_size(e->blocks)];
 }
 
-/* Gathers u - u0 (n x 3; u0 may be NULL) into the slots of block k,
- * 4 doubles per slot. */
-static void block_gather(const struct gsn_explicit *e, int k, const double *u,
-                         const double *u0, double *restrict local)
+/* Gathers x (n x 3) into the slots of block k, 4 doubles per slot. */
+static void block_gather(const struct gsn_explicit *e, int k, const double *x,
+                         double *restrict local)
 {
     const struct gsn_point_blocks *b = e->blocks;
     for (int s = b->block_slot[k]; s < b->block_slot[k + 1]; ++s) {
         const size_t I = 3 * (size_t)b->slot_particle[s];
         double *l = &local[4 * (size_t)(s - b->block_slot[k])];
         for (int i = 0; i < 3; ++i)
-            l[i] = u0 ? u[I + i] - u0[I + i] : u[I + i];
+            l[i] = x[I + i];
         l[3] = 0.0;
     }
+}
+
+/* Gathers the step's increments d - d_n (e->increment, 4 doubles a
+ * particle) into the slots of block k: one aligned 4-double copy a slot. */
+static void block_gather_increment(const struct gsn_explicit *e, int k,
+                                   double *restrict local)
+{
+    const struct gsn_point_blocks *b = e->blocks;
+    const int s0 = b->block_slot[k], s1 = b->block_slot[k + 1];
+    for (int s = s0; s < s1; ++s)
+        *(gsn_v4 *)&local[4 * (size_t)(s - s0)] =
+            *(const gsn_v4 *)&e->increment[4 * (size_t)b->slot_particle[s]];
 }
 
 /* Copies the block's forces (4 per slot) to its slots of e->slot_force. */
@@ -1190,7 +1209,7 @@ static int block_step(struct gsn_explicit *e, int k)
     double *share = fold + 9 * (size_t)b->max_block_points;
     double *A = share + (size_t)b->max_block_points;
     double *work = A + 18 * (size_t)b->max_block_points;
-    block_gather(e, k, e->displacement, e->previous_displacement, u4);
+    block_gather_increment(e, k, u4);
     memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
     memset(&e->point_failed[p0], 0, sizeof(int) * (size_t)(p1 - p0));
     for (int L = p0; L < p1; ++L) {
@@ -1251,7 +1270,7 @@ static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
     double *u4 = block_work(e), *f4 = u4 + 4 * (size_t)b->max_block_slots;
     double *H = f4 + 4 * (size_t)b->max_block_slots;
     double *fold = H + 9 * (size_t)b->max_block_points;
-    block_gather(e, k, x, NULL, u4);
+    block_gather(e, k, x, u4);
     memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
     for (int L = p0; L < p1; ++L) {
         double eps[6], sigma[6];
@@ -1497,7 +1516,23 @@ static struct gsn_step_sums step_loop(struct gsn_explicit *e, int count,
     return total;
 }
 
-/* d_{n+1} = d_n + dt v_n + dt^2/2 a_n (eq. (33)), keeping d_n. */
+/* The step's increments d - d_n, 4 doubles a particle (the 4th zero), as
+ * the pass gathers them (block_gather_increment). */
+static void store_increment(struct gsn_explicit *e, int i0, int i1,
+                            struct gsn_step_sums *sums)
+{
+    (void)sums;
+    for (int i = i0; i < i1; ++i) {
+        double *to = &e->increment[4 * (size_t)i];
+        for (int k = 0; k < 3; ++k)
+            to[k] = e->displacement[3 * i + k] -
+                    e->previous_displacement[3 * i + k];
+        to[3] = 0.0;
+    }
+}
+
+/* d_{n+1} = d_n + dt v_n + dt^2/2 a_n (eq. (33)), keeping d_n, and the
+ * increments. */
 static void predict_displacement(struct gsn_explicit *e, int i0, int i1,
                                  struct gsn_step_sums *sums)
 {
@@ -1508,6 +1543,7 @@ static void predict_displacement(struct gsn_explicit *e, int i0, int i1,
         e->displacement[i] +=
             dt * e->velocity[i] + 0.5 * dt * dt * e->acceleration[i];
     }
+    store_increment(e, i0, i1, sums);
 }
 
 /* a_{n+1} = M^-1 (f_ext - f_int) (eq. (32)), with the local damping on
@@ -1624,11 +1660,14 @@ int gsn_explicit_step(struct gsn_explicit *e)
         e->step % CONSTRAINT_REFRESH == 0 ||
         (e->constraints && gsn_constraints_ramping(e->constraints, e->time));
     phase_end(e, GSN_PHASE_UPDATES, &mark);
-    if (e->constraints && refresh)
+    if (e->constraints && refresh) {
         GSN_CALL(gsn_constraints_apply(
             e->constraints, &e->quadrature->particle_values,
             GSN_FIELD_DISPLACEMENT, t1, e->displacement, NULL));
-    phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
+        phase_end(e, GSN_PHASE_CONSTRAINTS, &mark);
+        step_loop(e, n, store_increment);
+        phase_end(e, GSN_PHASE_UPDATES, &mark);
+    }
 
     GSN_CALL(gsn_explicit_update_stress(e));
     phase_end(e, GSN_PHASE_PASS, &mark);

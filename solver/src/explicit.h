@@ -128,6 +128,8 @@ struct gsn_explicit {
 
     /* Work arrays, owned. */
     double *previous_displacement, *previous_external, *new_acceleration;
+    /* n x 4: d - d_n of the step (the 4th zero), the pass's input */
+    double *increment;
     double *piola;        /* points x 9: P_p w_p of the main points (the pass
                              keeps the stabilization points' P in registers) */
     double *point_energy; /* points: internal energy increment, J */
