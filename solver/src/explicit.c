@@ -985,8 +985,9 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
                 strain_max = strain;
                 strain_point = p;
             }
-            jacobian_min = fmin(jacobian_min, J1);
-            jacobian_max = fmax(jacobian_max, J1);
+            /* J1 > 0 here: no NaN for fmin's library call to handle */
+            jacobian_min = J1 < jacobian_min ? J1 : jacobian_min;
+            jacobian_max = J1 > jacobian_max ? J1 : jacobian_max;
         }
         memcpy(&old[6 * b], &e->stress[6 * p], 6 * sizeof(double));
         if (e->plastic_offset >= 0)
@@ -1084,9 +1085,9 @@ static void subcell_scatter(const struct gsn_point_blocks *b, int r,
  * part stays elastic (a flowing particle keeps its bulk stiffness; with
  * the whole rate scaled, particles at the faces of a pressed soil block
  * collapse to det F 0.03, tests/solver/test_checkerboard.c). */
-static void stabilization_stress(struct gsn_explicit *e, int L, int p,
-                                 const double dH[9], double share,
-                                 double sigma[6])
+static inline void stabilization_stress(struct gsn_explicit *e, int L, int p,
+                                        const double dH[9], double share,
+                                        double sigma[6])
 {
     const int relative = e->blocks->relative;
     double w = e->quadrature->point_weight[p];
