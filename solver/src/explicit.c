@@ -1439,7 +1439,9 @@ static int gather_distortion(struct gsn_explicit *e)
         x[1], x[2]);
 }
 
-int gsn_explicit_update_stress(struct gsn_explicit *e)
+/* gsn_explicit_update_stress from the increments already in e->increment
+ * (the step writes them with d_{n+1}). */
+static int update_stress_from_increments(struct gsn_explicit *e)
 {
     int failed = 0;
     int parallel = parallel_worth(e->point_count);
@@ -1545,6 +1547,12 @@ static void predict_displacement(struct gsn_explicit *e, int i0, int i1,
             dt * e->velocity[i] + 0.5 * dt * dt * e->acceleration[i];
     }
     store_increment(e, i0, i1, sums);
+}
+
+int gsn_explicit_update_stress(struct gsn_explicit *e)
+{
+    step_loop(e, e->particle_count, store_increment);
+    return update_stress_from_increments(e);
 }
 
 /* a_{n+1} = M^-1 (f_ext - f_int) (eq. (32)), with the local damping on
@@ -1670,7 +1678,7 @@ int gsn_explicit_step(struct gsn_explicit *e)
         phase_end(e, GSN_PHASE_UPDATES, &mark);
     }
 
-    GSN_CALL(gsn_explicit_update_stress(e));
+    GSN_CALL(update_stress_from_increments(e));
     phase_end(e, GSN_PHASE_PASS, &mark);
     GSN_CALL(contact_forces(e, t1));
     if (e->legacy_boundary_term)
