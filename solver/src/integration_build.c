@@ -105,11 +105,51 @@ static inline void accumulate(struct kernel_thread *t, int *touched_count,
         t->dense[3 * (size_t)i + k] += v[k];
 }
 
+/* Sorts n distinct ints ascending: insertion sort on short runs under a
+ * quicksort (qsort's calls through a pointer were a tenth of SCNI's rows;
+ * the same order, so the same rows). */
+static void sort_ints(int *a, int n)
+{
+    while (n > 16) {
+        int m = a[n / 2], i = 0, j = n - 1;
+        int lo = a[0] < m ? a[0] : m, hi = a[0] < m ? m : a[0];
+        int pivot = a[n - 1] < lo ? lo : a[n - 1] > hi ? hi : a[n - 1];
+        while (i <= j) {
+            while (a[i] < pivot)
+                ++i;
+            while (a[j] > pivot)
+                --j;
+            if (i <= j) {
+                int v = a[i];
+                a[i++] = a[j];
+                a[j--] = v;
+            }
+        }
+        /* the smaller part by recursion, the larger by the loop */
+        if (j + 1 < n - i) {
+            sort_ints(a, j + 1);
+            a += i;
+            n -= i;
+        } else {
+            sort_ints(a + i, n - i);
+            n = j + 1;
+        }
+    }
+    for (int i = 1; i < n; ++i) {
+        int v = a[i], j = i - 1;
+        while (j >= 0 && a[j] > v) {
+            a[j + 1] = a[j];
+            --j;
+        }
+        a[j + 1] = v;
+    }
+}
+
 /* Writes the touched entries in ascending order (scaled by scale) and
  * clears the accumulator. */
 static int flush(struct kernel_thread *t, int touched_count, double scale)
 {
-    qsort(t->touched, (size_t)touched_count, sizeof(int), compare_int);
+    sort_ints(t->touched, touched_count);
     int failed = 0;
     for (int e = 0; e < touched_count; ++e) {
         int i = t->touched[e];
@@ -122,18 +162,17 @@ static int flush(struct kernel_thread *t, int touched_count, double scale)
     return failed;
 }
 
-/* Row L: (1/V_L) sum over the facets of L of sum_q Psi_I(x_q) N w_q, with
- * N outward from L (the neighbour side uses the owner's points with the
- * opposite normal, so interior facets cancel exactly: eq. (24)). */
-static int scni_row(void *context, int L, struct kernel_thread *t)
+/* The facets' sum of scni_row into the accumulator of t (*touched). */
+static int scni_row_facets(const struct facet_context *c, int L,
+                           struct kernel_thread *t, int points, int *touched)
 {
-    const struct facet_context *c = context;
     const struct gsn_model *m = c->m;
-    int touched = 0;
     for (int e = c->particle_facet_offset[L];
          e < c->particle_facet_offset[L + 1]; ++e) {
         int f = c->particle_facet[e];
         double sign = m->facet_owner[f] == L ? 1.0 : -1.0;
+        int other =
+            m->facet_owner[f] == L ? m->facet_neighbour[f] : m->facet_owner[f];
         const double *normal = m->facet_normal + 3 * (size_t)f;
         int b0 = c->held ? c->held->facet_point[f] : -1;
         for (int q = m->facet_point_offset[f]; q < m->facet_point_offset[f + 1];
@@ -151,25 +190,72 @@ static int scni_row(void *context, int L, struct kernel_thread *t)
                         double v[3] = {c->values->value[r] * normal[0] * a,
                                        c->values->value[r] * normal[1] * a,
                                        c->values->value[r] * normal[2] * a};
-                        accumulate(t, &touched, c->values->index[r], v);
+                        accumulate(t, touched, c->values->index[r], v);
                     }
                 }
                 continue;
             }
-            int count;
-            int rc = kernel_evaluate(c->rk, m->facet_point + 3 * (size_t)q, 0,
-                                     t, &count, "facet point", q);
-            if (rc != GSN_OK)
-                return rc;
+            /* an interior facet's point is evaluated once for both its
+             * cells when both rows fall in one chunk (kernel_rows.h) */
+            const int *index = t->index;
+            const double *psi = t->psi;
+            int count = kernel_cache_find(t, points, L, q, &index, &psi);
+            if (count < 0) {
+                int rc = kernel_evaluate(c->rk, m->facet_point + 3 * (size_t)q,
+                                         0, t, &count, "facet point", q);
+                if (rc != GSN_OK)
+                    return rc;
+                if (other > L &&
+                    other / KERNEL_ROWS_CHUNK == L / KERNEL_ROWS_CHUNK)
+                    kernel_cache_keep(t, q, count);
+                index = t->index;
+                psi = t->psi;
+            }
             double w = sign * m->facet_weight[q];
             for (int n = 0; n < count; ++n) {
-                double v[3] = {t->psi[n] * normal[0] * w,
-                               t->psi[n] * normal[1] * w,
-                               t->psi[n] * normal[2] * w};
-                accumulate(t, &touched, t->index[n], v);
+                double v[3] = {psi[n] * normal[0] * w, psi[n] * normal[1] * w,
+                               psi[n] * normal[2] * w};
+                accumulate(t, touched, index[n], v);
             }
         }
     }
+    return GSN_OK;
+}
+
+/* Row L: (1/V_L) sum over the facets of L of sum_q Psi_I(x_q) N w_q, with
+ * N outward from L (the neighbour side uses the owner's points with the
+ * opposite normal, so interior facets cancel exactly: eq. (24)). */
+static int scni_row(void *context, int L, struct kernel_thread *t)
+{
+    const struct facet_context *c = context;
+    const struct gsn_model *m = c->m;
+    const int points = m->facet_point_offset[m->facet_count];
+    int touched = 0;
+    /* the particles covering any facet point of the cell, found once: each
+     * point then looks among them (the same neighbours, in the same order,
+     * as a search of its own) */
+    double lo[3] = {INFINITY, INFINITY, INFINITY};
+    double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int e = c->particle_facet_offset[L];
+         e < c->particle_facet_offset[L + 1]; ++e) {
+        int f = c->particle_facet[e];
+        for (int q = m->facet_point_offset[f]; q < m->facet_point_offset[f + 1];
+             ++q)
+            for (int k = 0; k < 3; ++k) {
+                double x = m->facet_point[3 * (size_t)q + k];
+                lo[k] = x < lo[k] ? x : lo[k];
+                hi[k] = x > hi[k] ? x : hi[k];
+            }
+    }
+    if (lo[0] <= hi[0]) {
+        int found = gsn_rk_box_neighbours(c->rk, lo, hi, GSN_RK_MAX_NEIGHBOURS,
+                                          t->candidate);
+        t->candidate_count = found <= GSN_RK_MAX_NEIGHBOURS ? found : -1;
+    }
+    int rc = scni_row_facets(c, L, t, points, &touched);
+    t->candidate_count = -1;
+    if (rc != GSN_OK)
+        return rc;
     if (flush(t, touched, 1.0 / m->volume[L])) {
         snprintf(t->message, sizeof t->message, "out of memory at row %d", L);
         return GSN_ERR_MEMORY;

@@ -14,7 +14,11 @@ int kernel_evaluate(const struct gsn_rk *rk, const double *x, int want_gradient,
                     struct kernel_thread *t, int *count, const char *what,
                     int which)
 {
-    *count = gsn_rk_neighbours(rk, x, GSN_RK_MAX_NEIGHBOURS, t->index);
+    *count =
+        t->candidate_count >= 0
+            ? gsn_rk_neighbours_among(rk, x, t->candidate, t->candidate_count,
+                                      GSN_RK_MAX_NEIGHBOURS, t->index)
+            : gsn_rk_neighbours(rk, x, GSN_RK_MAX_NEIGHBOURS, t->index);
     if (*count > GSN_RK_MAX_NEIGHBOURS) {
         snprintf(t->message, sizeof t->message,
                  "%s %d at (%g, %g, %g) is covered by %d kernels, more than "
@@ -72,8 +76,92 @@ int kernel_row_push(struct kernel_thread *t, int index, double value,
     return 0;
 }
 
+static void cache_clear(struct kernel_thread *t)
+{
+    for (int s = 0; s < t->cache_count; ++s)
+        t->cache_slot[t->cache_point[s]] = -1;
+    t->cache_count = 0;
+    t->cache_used = 0;
+}
+
+int kernel_cache_find(struct kernel_thread *t, int points, int row, int q,
+                      const int **index, const double **psi)
+{
+    if (!t->cache_slot) {
+        t->cache_slot =
+            malloc((size_t)(points > 0 ? points : 1) * sizeof *t->cache_slot);
+        if (!t->cache_slot)
+            return -1;
+        for (int i = 0; i < points; ++i)
+            t->cache_slot[i] = -1;
+        t->cache_points = points;
+        t->cache_chunk = -1;
+    }
+    int chunk = row / KERNEL_ROWS_CHUNK;
+    if (chunk != t->cache_chunk) {
+        cache_clear(t);
+        t->cache_chunk = chunk;
+    }
+    int s = q < t->cache_points ? t->cache_slot[q] : -1;
+    if (s < 0)
+        return -1;
+    *index = t->cache_index + t->cache_offset[s];
+    *psi = t->cache_psi + t->cache_offset[s];
+    return t->cache_offset[s + 1] - t->cache_offset[s];
+}
+
+int kernel_cache_keep(struct kernel_thread *t, int q, int count)
+{
+    if (!t->cache_slot || q >= t->cache_points)
+        return 1;
+    if (t->cache_count + 1 >= t->cache_capacity) {
+        int capacity = t->cache_capacity ? 2 * t->cache_capacity : 1024;
+        int *point = realloc(t->cache_point, (size_t)capacity * sizeof *point);
+        if (point)
+            t->cache_point = point;
+        int *offset =
+            realloc(t->cache_offset, (size_t)(capacity + 1) * sizeof *offset);
+        if (offset)
+            t->cache_offset = offset;
+        if (!point || !offset)
+            return 1;
+        t->cache_capacity = capacity;
+        if (t->cache_count == 0)
+            t->cache_offset[0] = 0;
+    }
+    if (t->cache_used + count > t->cache_size) {
+        long size = 2 * (t->cache_used + count) + 4096;
+        int *index = realloc(t->cache_index, (size_t)size * sizeof *index);
+        if (index)
+            t->cache_index = index;
+        double *psi = realloc(t->cache_psi, (size_t)size * sizeof *psi);
+        if (psi)
+            t->cache_psi = psi;
+        if (!index || !psi)
+            return 1;
+        t->cache_size = size;
+    }
+    int s = t->cache_count++;
+    t->cache_offset[s] = (int)t->cache_used;
+    memcpy(t->cache_index + t->cache_used, t->index,
+           (size_t)count * sizeof *t->index);
+    memcpy(t->cache_psi + t->cache_used, t->psi,
+           (size_t)count * sizeof *t->psi);
+    t->cache_used += count;
+    t->cache_offset[s + 1] = (int)t->cache_used;
+    t->cache_point[s] = q;
+    t->cache_slot[q] = s;
+    return 0;
+}
+
 static void thread_free(struct kernel_thread *t)
 {
+    free(t->candidate);
+    free(t->cache_slot);
+    free(t->cache_point);
+    free(t->cache_offset);
+    free(t->cache_index);
+    free(t->cache_psi);
     free(t->index);
     free(t->psi);
     free(t->gradient);
@@ -100,8 +188,10 @@ static int thread_allocate(struct kernel_thread *t, const struct gsn_rk *rk)
     t->dense = calloc(3 * n, sizeof *t->dense);
     t->mark = calloc(n, sizeof *t->mark);
     t->touched = malloc(n * sizeof *t->touched);
+    t->candidate = malloc(cap * sizeof *t->candidate);
+    t->candidate_count = -1;
     return t->index && t->psi && t->gradient && t->hessian && t->work &&
-           t->dense && t->mark && t->touched;
+           t->dense && t->mark && t->touched && t->candidate;
 }
 
 int kernel_rows_build(const struct gsn_rk *rk, int row_count, kernel_row_fn fn,
@@ -134,7 +224,7 @@ int kernel_rows_build(const struct gsn_rk *rk, int row_count, kernel_row_fn fn,
     {
         int tid = omp_get_thread_num();
         struct kernel_thread *t = &team[tid];
-#pragma omp for schedule(dynamic, 64)
+#pragma omp for schedule(dynamic, KERNEL_ROWS_CHUNK)
         for (int r = 0; r < row_count; ++r) {
             row_thread[r] = tid;
             row_start[r] = t->count;

@@ -27,7 +27,34 @@ struct kernel_thread {
     double *out_gradient;
     char message[256];
     double failed_at[3]; /* the point of a GSN_ERR_NUMERICAL failure */
+    /* Psi at points kept for later rows of the same chunk (kernel_cache_*):
+     * per point its slot or -1 (cache_points long, made on first use),
+     * per slot its entries in the arena */
+    int *cache_slot, cache_points, cache_chunk;
+    int *cache_point, *cache_offset, cache_count, cache_capacity;
+    int *cache_index;
+    double *cache_psi;
+    long cache_used, cache_size;
+    /* where candidate_count >= 0: kernel_evaluate finds its neighbours
+     * among these (gsn_rk_neighbours_among), for points in their box */
+    int *candidate, candidate_count;
 };
+
+/* Rows per chunk of kernel_rows_build's dynamic schedule: one thread
+ * computes rows [k CHUNK, (k + 1) CHUNK) in order. */
+enum { KERNEL_ROWS_CHUNK = 256 };
+
+/* The cached Psi of point q (t->cache_*): its entry count with *index and
+ * *psi pointing at them, or -1 if not cached for row's chunk (the cache is
+ * cleared when a row of a new chunk asks). points: how many points there
+ * are (the cache's size). */
+int kernel_cache_find(struct kernel_thread *t, int points, int row, int q,
+                      const int **index, const double **psi);
+
+/* Keeps t->index, t->psi (count entries, the last kernel_evaluate) as the
+ * Psi of point q for the rest of the chunk; 1 if out of memory (the cache
+ * is then only not used). */
+int kernel_cache_keep(struct kernel_thread *t, int q, int count);
 
 /* Finds the particles covering x and evaluates Psi (and grad Psi if
  * want_gradient is 1) there into t->index, t->psi, t->gradient, or only the

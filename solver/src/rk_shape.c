@@ -86,7 +86,7 @@ static inline double dot(int n, const double *a, const double *b)
 }
 
 /* Cholesky M = L L^T in place (lower triangle); 1 if not positive. */
-static int cholesky(int n, double *a)
+static inline int cholesky(int n, double *a)
 {
     for (int j = 0; j < n; ++j) {
         double d = a[j * n + j];
@@ -106,7 +106,7 @@ static int cholesky(int n, double *a)
     return 0;
 }
 
-static void cholesky_solve(int n, const double *l, double *x)
+static inline void cholesky_solve(int n, const double *l, double *x)
 {
     for (int i = 0; i < n; ++i) {
         double s = x[i];
@@ -122,7 +122,7 @@ static void cholesky_solve(int n, const double *l, double *x)
     }
 }
 
-static double norm1(int n, const double *a)
+static inline double norm1(int n, const double *a)
 {
     double best = 0.0;
     for (int j = 0; j < n; ++j) {
@@ -139,8 +139,9 @@ static double norm1(int n, const double *a)
  * (column by column through column, m doubles of scratch); *condition gets
  * the 1-norm condition number. Returns 1 if M is not positive or its
  * condition number exceeds GSN_RK_CONDITION_LIMIT. */
-static int factor_checked(int m, const double *moment, double *factor,
-                          double *inverse, double *column, double *condition)
+static inline int factor_checked(int m, const double *moment, double *factor,
+                                 double *inverse, double *column,
+                                 double *condition)
 {
     memcpy(factor, moment, (size_t)m * (size_t)m * sizeof *factor);
     if (cholesky(m, factor))
@@ -163,11 +164,14 @@ size_t gsn_rk_work_size(const struct gsn_rk *rk, int count)
     return 16 * (size_t)count + 4 * m * m + 8 * m;
 }
 
-int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
-                       const int *index, double *work, double *psi,
-                       double *gradient, double *condition)
+/* gsn_rk_shape_point for a basis of m terms: inlined with m a constant
+ * (4 or 10), so that the small loops over the basis unroll (SCNI's rows
+ * on Slope I: 18% less CPU, bench/kernels_bench). */
+static inline int shape_point(const struct gsn_rk *rk, const int m,
+                              const double x[3], int count, const int *index,
+                              double *work, double *psi, double *gradient,
+                              double *condition)
 {
-    const int m = rk->basis_size;
     const size_t mm = (size_t)m * (size_t)m;
     double *z = work;                      /* 3 per neighbour */
     double *phi = z + 3 * (size_t)count;   /* 1 */
@@ -189,23 +193,27 @@ int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
         if (rk->radius[index[n]] > s)
             s = rk->radius[index[n]];
 
-    /* Kernel values and derivatives; moment matrix eq. (15). */
+    /* Kernel values and derivatives; moment matrix eq. (15). One division
+     * a neighbour (and one for s): they were most of this loop's time. */
+    const double inverse_s = 1.0 / s;
     memset(moment, 0, mm * sizeof *moment);
     for (int n = 0; n < count; ++n) {
         const double *xi = rk->position + 3 * (size_t)index[n];
-        const double a = rk->radius[index[n]];
+        const double inverse_a = 1.0 / rk->radius[index[n]];
         double w[3], dw[3];
         for (int k = 0; k < 3; ++k) {
             double d = xi[k] - x[k];
-            z[3 * n + k] = d / s;
-            bspline(fabs(d) / a, &w[k], &dw[k]);
+            z[3 * n + k] = d * inverse_s;
+            bspline(fabs(d) * inverse_a, &w[k], &dw[k]);
             /* d r_k / d X_k = sign(X_k - X_Ik) / a */
-            dw[k] *= (d > 0.0 ? -1.0 : 1.0) / a;
+            dw[k] *= d > 0.0 ? -inverse_a : inverse_a;
         }
         phi[n] = w[0] * w[1] * w[2];
-        dphi[3 * n + 0] = dw[0] * w[1] * w[2];
-        dphi[3 * n + 1] = w[0] * dw[1] * w[2];
-        dphi[3 * n + 2] = w[0] * w[1] * dw[2];
+        if (gradient) {
+            dphi[3 * n + 0] = dw[0] * w[1] * w[2];
+            dphi[3 * n + 1] = w[0] * dw[1] * w[2];
+            dphi[3 * n + 2] = w[0] * w[1] * dw[2];
+        }
         basis_eval(m, z + 3 * n, h);
         for (int i = 0; i < m; ++i)
             for (int j = 0; j <= i; ++j)
@@ -291,6 +299,16 @@ int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
         }
     }
     return 0;
+}
+
+int gsn_rk_shape_point(const struct gsn_rk *rk, const double x[3], int count,
+                       const int *index, double *work, double *psi,
+                       double *gradient, double *condition)
+{
+    return rk->basis_size == 4 ? shape_point(rk, 4, x, count, index, work, psi,
+                                             gradient, condition)
+                               : shape_point(rk, 10, x, count, index, work, psi,
+                                             gradient, condition);
 }
 
 /* d^2 w / dr^2 of bspline. */
@@ -467,6 +485,69 @@ int gsn_rk_neighbours(const struct gsn_rk *rk, const double x[3], int capacity,
             --j;
         }
         index[j + 1] = v;
+    }
+    return count;
+}
+
+static int compare_int(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
+int gsn_rk_box_neighbours(const struct gsn_rk *rk, const double lo[3],
+                          const double hi[3], int capacity, int *index)
+{
+    int count = 0;
+    for (int level = 0; level < 2; ++level) {
+        const struct gsn_rk_grid *g = &rk->grid[level];
+        if (g->count == 0)
+            continue;
+        int c_lo[3], c_hi[3];
+        for (int k = 0; k < 3; ++k) {
+            c_lo[k] = grid_cell(g, k, lo[k] - g->max_radius);
+            c_hi[k] = grid_cell(g, k, hi[k] + g->max_radius);
+        }
+        for (int c2 = c_lo[2]; c2 <= c_hi[2]; ++c2)
+            for (int c1 = c_lo[1]; c1 <= c_hi[1]; ++c1)
+                for (int c0 = c_lo[0]; c0 <= c_hi[0]; ++c0) {
+                    size_t cell =
+                        (size_t)c0 + (size_t)g->size[0] *
+                                         ((size_t)c1 + (size_t)g->size[1] * c2);
+                    for (int e = g->cell_offset[cell];
+                         e < g->cell_offset[cell + 1]; ++e) {
+                        const double *xp = g->cell_data + 4 * (size_t)e;
+                        double a = xp[3];
+                        if (xp[0] - a < hi[0] && xp[0] + a > lo[0] &&
+                            xp[1] - a < hi[1] && xp[1] + a > lo[1] &&
+                            xp[2] - a < hi[2] && xp[2] + a > lo[2]) {
+                            if (count < capacity)
+                                index[count] = g->cell_particle[e];
+                            ++count;
+                        }
+                    }
+                }
+    }
+    if (count <= capacity)
+        qsort(index, (size_t)count, sizeof *index, compare_int);
+    return count;
+}
+
+int gsn_rk_neighbours_among(const struct gsn_rk *rk, const double x[3],
+                            const int *candidate, int candidate_count,
+                            int capacity, int *index)
+{
+    int count = 0;
+    for (int c = 0; c < candidate_count; ++c) {
+        int p = candidate[c];
+        const double *xp = rk->position + 3 * (size_t)p;
+        double a = rk->radius[p];
+        if (fabs(x[0] - xp[0]) < a && fabs(x[1] - xp[1]) < a &&
+            fabs(x[2] - xp[2]) < a) {
+            if (count < capacity)
+                index[count] = p;
+            ++count;
+        }
     }
     return count;
 }

@@ -107,6 +107,19 @@ int gsn_rk_spacing_from_facets(const struct gsn_model *m, double cover_support,
 int gsn_rk_neighbours(const struct gsn_rk *rk, const double x[3], int capacity,
                       int *index);
 
+/* The particles whose kernel covers some point of the box [lo, hi]
+ * (|X_Ik - y_k| < a_I for some lo <= y <= hi), in ascending order: the
+ * candidates of gsn_rk_neighbours_among for points in the box. Returns
+ * their number; only the first capacity are written. */
+int gsn_rk_box_neighbours(const struct gsn_rk *rk, const double lo[3],
+                          const double hi[3], int capacity, int *index);
+
+/* gsn_rk_neighbours of x (in the box that gave the candidates) found among
+ * them: the same particles in the same order. */
+int gsn_rk_neighbours_among(const struct gsn_rk *rk, const double x[3],
+                            const int *candidate, int candidate_count,
+                            int capacity, int *index);
+
 /* Doubles of workspace gsn_rk_shape_point needs for count neighbours. */
 size_t gsn_rk_work_size(const struct gsn_rk *rk, int count);
 
