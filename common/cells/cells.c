@@ -15,6 +15,7 @@
 #include "geoscni/cells.h"
 #include "delaunay.h"
 #include "geoscni/error.h"
+#include "geoscni/tensor.h"
 #include "polyhedron.h"
 
 #include <math.h>
@@ -124,8 +125,8 @@ static int points_miss_box(const double *v, int count, const double x[3],
     for (int k = 0; k < 3; ++k) {
         double a = v[k], c = v[k];
         for (int p = 1; p < count; ++p) {
-            a = fmin(a, v[3 * p + k]);
-            c = fmax(c, v[3 * p + k]);
+            a = gsn_min(a, v[3 * p + k]);
+            c = gsn_max(c, v[3 * p + k]);
         }
         if (touching_misses ? a + x[k] >= hi[k] || c + x[k] <= lo[k]
                             : a + x[k] > hi[k] || c + x[k] < lo[k])

@@ -10,6 +10,7 @@
 #include "delaunay.h"
 #include "geoscni/cells.h"
 #include "geoscni/error.h"
+#include "geoscni/tensor.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -133,8 +134,8 @@ static void triangle_box(const struct boundary *s, int t, double lo[3],
     for (int j = 0; j < 3; ++j)
         for (int k = 0; k < 3; ++k) {
             double c = s->x[3 * s->vertex[3 * t + j] + k];
-            lo[k] = fmin(lo[k], c);
-            hi[k] = fmax(hi[k], c);
+            lo[k] = gsn_min(lo[k], c);
+            hi[k] = gsn_max(hi[k], c);
         }
 }
 
@@ -333,11 +334,11 @@ static double triangle_distance2(const struct boundary *s, int t,
                 len += qr[k] * qr[k];
                 dot += qr[k] * qp[k];
             }
-            double f = len > 0.0 ? fmin(fmax(dot / len, 0.0), 1.0) : 0.0;
+            double f = len > 0.0 ? gsn_min(gsn_max(dot / len, 0.0), 1.0) : 0.0;
             double d = 0.0;
             for (int k = 0; k < 3; ++k)
                 d += (qp[k] - f * qr[k]) * (qp[k] - f * qr[k]);
-            best = fmin(best, d);
+            best = gsn_min(best, d);
         }
         return best;
     }
@@ -434,8 +435,8 @@ static void nearest_distances(const double *x, int particle_count,
                     d += (x[3 * p + k] - x[3 * q + k]) *
                          (x[3 * p + k] - x[3 * q + k]);
                 d = sqrt(d);
-                nearest[p] = fmin(nearest[p], d);
-                nearest[q] = fmin(nearest[q], d);
+                nearest[p] = gsn_min(nearest[p], d);
+                nearest[q] = gsn_min(nearest[q], d);
             }
 }
 

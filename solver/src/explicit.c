@@ -985,9 +985,8 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
                 strain_max = strain;
                 strain_point = p;
             }
-            /* J1 > 0 here: no NaN for fmin's library call to handle */
-            jacobian_min = J1 < jacobian_min ? J1 : jacobian_min;
-            jacobian_max = J1 > jacobian_max ? J1 : jacobian_max;
+            jacobian_min = gsn_min(jacobian_min, J1);
+            jacobian_max = gsn_max(jacobian_max, J1);
         }
         memcpy(&old[6 * b], &e->stress[6 * p], 6 * sizeof(double));
         if (e->plastic_offset >= 0)
@@ -2043,18 +2042,45 @@ int gsn_explicit_settle(struct gsn_explicit *e)
 enum { INTERPOLATE_MAX_ITERATIONS = 2000 };
 #define INTERPOLATE_TOLERANCE 1e-12
 
-/* y = Lambda x for one component:
- * y_J = sum_I Psi_I(X_J) x_I. */
-static void lambda_apply(const struct gsn_shape_rows *rows, int n,
-                         const double *x, double *y)
+/* lambda_apply for a constant count (inlined: the sums stay in registers). */
+static inline void lambda_apply_fixed(const struct gsn_shape_rows *rows, int n,
+                                      const int count, const double *const *x,
+                                      double *const *y)
 {
+    const double *x0 = x[0], *x1 = count > 1 ? x[1] : x[0],
+                 *x2 = count > 2 ? x[2] : x[0];
 #pragma omp parallel for if (parallel_worth(n))
     for (int J = 0; J < n; ++J) {
-        double sum = 0.0;
-        for (int k = rows->offset[J]; k < rows->offset[J + 1]; ++k)
-            sum += rows->value[k] * x[rows->index[k]];
-        y[J] = sum;
+        double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+        for (int k = rows->offset[J]; k < rows->offset[J + 1]; ++k) {
+            const double v = rows->value[k];
+            const int I = rows->index[k];
+            /* fma pinned: the compiler contracted some variants, not all */
+            s0 = fma(v, x0[I], s0);
+            if (count > 1)
+                s1 = fma(v, x1[I], s1);
+            if (count > 2)
+                s2 = fma(v, x2[I], s2);
+        }
+        y[0][J] = s0;
+        if (count > 1)
+            y[1][J] = s1;
+        if (count > 2)
+            y[2][J] = s2;
     }
+}
+
+/* y_a = Lambda x_a (rows: Lambda_JI = Psi_I(X_J)) for the `count` (1 to 3)
+ * vectors x_a, reading the rows once for all. */
+static void lambda_apply(const struct gsn_shape_rows *rows, int n, int count,
+                         const double *const *x, double *const *y)
+{
+    if (count == 3)
+        lambda_apply_fixed(rows, n, 3, x, y);
+    else if (count == 2)
+        lambda_apply_fixed(rows, n, 2, x, y);
+    else
+        lambda_apply_fixed(rows, n, 1, x, y);
 }
 
 /* a . b over n values, in fixed pieces added in order: the same bits on
@@ -2081,7 +2107,7 @@ static double max_abs(const double *a, int n)
 {
     double m = 0.0;
     for (int i = 0; i < n; ++i)
-        m = fmax(m, fabs(a[i]));
+        m = gsn_max(m, fabs(a[i]));
     return m;
 }
 
@@ -2124,19 +2150,31 @@ struct interpolation_weights {
     const double *lumped;   /* M */
 };
 
-/* A x = (Lambda^T W Lambda + eps M) x for one component; work holds n. */
+/* y_a = A x_a = (Lambda^T W Lambda + eps M) x_a for `count` components;
+ * work_a holds n each. */
 static void normal_apply(const struct gsn_shape_rows *rows,
-                         const struct gsn_shape_rows *columns, int n,
-                         struct interpolation_weights weights, const double *x,
-                         double *work, double *y)
+                         const struct gsn_shape_rows *columns, int n, int count,
+                         struct interpolation_weights weights,
+                         const double *const *x, double *const *work,
+                         double *const *y)
 {
-    lambda_apply(rows, n, x, work);
-    for (int J = 0; J < n; ++J)
-        work[J] *= weights.particle[J];
-    lambda_apply(columns, n, work, y);
-    for (int I = 0; I < n; ++I)
-        y[I] += GSN_INTERPOLATE_REGULARIZATION * weights.lumped[I] * x[I];
+    lambda_apply(rows, n, count, x, work);
+    for (int a = 0; a < count; ++a)
+        for (int J = 0; J < n; ++J)
+            work[a][J] *= weights.particle[J];
+    lambda_apply(columns, n, count, (const double *const *)work, y);
+    for (int a = 0; a < count; ++a)
+        for (int I = 0; I < n; ++I)
+            y[a][I] +=
+                GSN_INTERPOLATE_REGULARIZATION * weights.lumped[I] * x[a][I];
 }
+
+/* The conjugate-gradient state of one component (interpolate_components). */
+struct interpolation_cg {
+    double *r, *z, *p, *q, *delta, *scratch;
+    double rz, goal, residual;
+    int iterations, done;
+};
 
 /* Coefficients c for the values b of one component: c = b + delta with
  * delta minimizing |Lambda c - b|_W^2 + eps |delta|_M^2 with the momentum
@@ -2144,58 +2182,120 @@ static void normal_apply(const struct gsn_shape_rows *rows,
  * (Lambda^T W Lambda + eps M) delta = Lambda^T W (b - Lambda b), by
  * conjugate gradients with the diagonal as preconditioner from delta = 0;
  * as A 1 = (1 + eps) M 1 = (1 + eps) Lambda^T W 1 (partition of unity),
- * the constraint's multiplier adds a uniform shift. work holds 6 n + pieces
- * doubles. Returns the iterations, or -1 without convergence; *residual
- * gets the last max-norm residual. */
-static int interpolate_component(const struct gsn_shape_rows *rows,
-                                 const struct gsn_shape_rows *columns, int n,
-                                 struct interpolation_weights weights,
-                                 const double *diagonal, const double *b,
-                                 double *c, double *work, double *residual)
+ * the constraint's multiplier adds a uniform shift. The three components
+ * run side by side, each with its own iteration (the same arithmetic as
+ * one at a time), so that the rows are read once for all. b and c: n x 3;
+ * work holds 18 n + pieces doubles. Returns the most iterations, or -1
+ * without convergence; *residual and *failed get the residual (max norm)
+ * and the component of a failure. */
+static int interpolate_components(const struct gsn_shape_rows *rows,
+                                  const struct gsn_shape_rows *columns, int n,
+                                  struct interpolation_weights weights,
+                                  const double *diagonal, const double *b,
+                                  double *c, double *work, double *residual,
+                                  int *failed)
 {
-    double *r = work, *z = r + n, *p = z + n, *q = p + n, *delta = q + n;
-    double *scratch = delta + n, *partial = scratch + n;
-    lambda_apply(rows, n, b, scratch);
-    for (int J = 0; J < n; ++J)
-        scratch[J] = weights.particle[J] * (b[J] - scratch[J]);
-    lambda_apply(columns, n, scratch, r);
-    memset(delta, 0, sizeof(double) * (size_t)n);
-    memset(p, 0, sizeof(double) * (size_t)n); /* beta p is 0 at first */
-    double goal = INTERPOLATE_TOLERANCE * max_abs(r, n);
-    *residual = max_abs(r, n);
-    int iteration = 0;
-    double rz = 0.0;
-    while (*residual > goal) {
-        if (++iteration > INTERPOLATE_MAX_ITERATIONS)
-            return -1;
-        for (int I = 0; I < n; ++I)
-            z[I] = r[I] / diagonal[I];
-        double rz1 = dot_ordered(r, z, n, partial);
-        double beta = iteration > 1 ? rz1 / rz : 0.0;
-        rz = rz1;
-        for (int I = 0; I < n; ++I)
-            p[I] = z[I] + beta * p[I];
-        normal_apply(rows, columns, n, weights, p, scratch, q);
-        double pq = dot_ordered(p, q, n, partial);
-        if (!(pq > 0.0))
-            return -1;
-        double alpha = rz / pq;
-        for (int I = 0; I < n; ++I) {
-            delta[I] += alpha * p[I];
-            r[I] -= alpha * q[I];
-        }
-        *residual = max_abs(r, n);
+    struct interpolation_cg cg[3];
+    double *partial = work + 18 * (size_t)n;
+    const double *in[3];
+    double *out[3], *scratch[3];
+    for (int a = 0; a < 3; ++a) {
+        struct interpolation_cg *g = &cg[a];
+        double *w = work + 6 * (size_t)n * (size_t)a;
+        g->r = w;
+        g->z = w + n;
+        g->p = w + 2 * (size_t)n;
+        g->q = w + 3 * (size_t)n;
+        g->delta = w + 4 * (size_t)n;
+        g->scratch = w + 5 * (size_t)n;
+        for (int J = 0; J < n; ++J)
+            g->z[J] = b[3 * J + a]; /* b of this component */
+        in[a] = g->z;
+        out[a] = g->scratch;
+        scratch[a] = g->q;
     }
-    for (int I = 0; I < n; ++I)
-        c[I] = b[I] + delta[I];
-    for (int J = 0; J < n; ++J)
-        p[J] = 1.0;
-    double shift = (dot_ordered(weights.particle, b, n, partial) -
-                    dot_ordered(weights.lumped, c, n, partial)) /
-                   dot_ordered(weights.lumped, p, n, partial);
-    for (int I = 0; I < n; ++I)
-        c[I] += shift;
-    return iteration;
+    /* r = Lambda^T W (b - Lambda b) */
+    lambda_apply(rows, n, 3, in, out);
+    for (int a = 0; a < 3; ++a)
+        for (int J = 0; J < n; ++J)
+            cg[a].scratch[J] =
+                weights.particle[J] * (cg[a].z[J] - cg[a].scratch[J]);
+    for (int a = 0; a < 3; ++a) {
+        in[a] = cg[a].scratch;
+        out[a] = cg[a].r;
+    }
+    lambda_apply(columns, n, 3, in, out);
+    int most = 0;
+    for (int a = 0; a < 3; ++a) {
+        struct interpolation_cg *g = &cg[a];
+        memset(g->delta, 0, sizeof(double) * (size_t)n);
+        memset(g->p, 0, sizeof(double) * (size_t)n); /* beta p is 0 at first */
+        g->residual = max_abs(g->r, n);
+        g->goal = INTERPOLATE_TOLERANCE * g->residual;
+        g->iterations = 0;
+        g->rz = 0.0;
+        g->done = !(g->residual > g->goal);
+    }
+    for (;;) {
+        int active[3], count = 0;
+        for (int a = 0; a < 3; ++a)
+            if (!cg[a].done)
+                active[count++] = a;
+        if (count == 0)
+            break;
+        for (int k = 0; k < count; ++k) {
+            struct interpolation_cg *g = &cg[active[k]];
+            if (++g->iterations > INTERPOLATE_MAX_ITERATIONS) {
+                *residual = g->residual;
+                *failed = active[k];
+                return -1;
+            }
+            for (int I = 0; I < n; ++I)
+                g->z[I] = g->r[I] / diagonal[I];
+            double rz1 = dot_ordered(g->r, g->z, n, partial);
+            double beta = g->iterations > 1 ? rz1 / g->rz : 0.0;
+            g->rz = rz1;
+            for (int I = 0; I < n; ++I)
+                g->p[I] = g->z[I] + beta * g->p[I];
+            in[k] = g->p;
+            out[k] = g->q;
+            scratch[k] = g->scratch;
+        }
+        normal_apply(rows, columns, n, count, weights, in, scratch, out);
+        for (int k = 0; k < count; ++k) {
+            struct interpolation_cg *g = &cg[active[k]];
+            double pq = dot_ordered(g->p, g->q, n, partial);
+            if (!(pq > 0.0)) {
+                *residual = g->residual;
+                *failed = active[k];
+                return -1;
+            }
+            double alpha = g->rz / pq;
+            for (int I = 0; I < n; ++I) {
+                g->delta[I] += alpha * g->p[I];
+                g->r[I] -= alpha * g->q[I];
+            }
+            g->residual = max_abs(g->r, n);
+            g->done = !(g->residual > g->goal);
+        }
+    }
+    for (int a = 0; a < 3; ++a) {
+        struct interpolation_cg *g = &cg[a];
+        most = g->iterations > most ? g->iterations : most;
+        double *x = g->scratch, *one = g->q;
+        for (int I = 0; I < n; ++I)
+            x[I] = b[3 * I + a] + g->delta[I];
+        for (int J = 0; J < n; ++J)
+            one[J] = 1.0;
+        for (int J = 0; J < n; ++J)
+            g->z[J] = b[3 * J + a];
+        double shift = (dot_ordered(weights.particle, g->z, n, partial) -
+                        dot_ordered(weights.lumped, x, n, partial)) /
+                       dot_ordered(weights.lumped, one, n, partial);
+        for (int I = 0; I < n; ++I)
+            c[3 * I + a] = x[I] + shift;
+    }
+    return most;
 }
 
 int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
@@ -2207,13 +2307,12 @@ int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
     struct gsn_shape_rows columns;
     memset(&columns, 0, sizeof columns);
     double *work =
-        malloc(sizeof(double) * (10 * (size_t)n + (size_t)pieces + 1));
+        malloc(sizeof(double) * (20 * (size_t)n + (size_t)pieces + 1));
     int rc = work
                  ? lambda_transpose(rows, n, &columns)
                  : gsn_error_raise(GSN_ERR_MEMORY, __FILE__, __LINE__, __func__,
-                                   "cannot allocate %d values", 10 * n);
-    double *diagonal = work, *b = diagonal + n, *x = b + n, *W = x + n;
-    double *scratch = W + n;
+                                   "cannot allocate %d values", 20 * n);
+    double *diagonal = work, *W = diagonal + n, *scratch = W + n;
     struct interpolation_weights weights = {W, e->mass};
     int most = 0;
     if (rc == GSN_OK) {
@@ -2228,28 +2327,22 @@ int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
                     W[columns.index[k]] * columns.value[k] * columns.value[k];
             diagonal[I] = sum + GSN_INTERPOLATE_REGULARIZATION * e->mass[I];
         }
-    }
-    for (int a = 0; a < 3 && rc == GSN_OK; ++a) {
-        for (int J = 0; J < n; ++J)
-            b[J] = values[3 * J + a];
         double residual = 0.0;
-        int count = interpolate_component(rows, &columns, n, weights, diagonal,
-                                          b, x, scratch, &residual);
-        if (count < 0)
-            rc =
-                gsn_error_raise(GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
-                                "the coefficients of a field at %d particles "
-                                "did not converge (component %d: residual "
-                                "%.3g after %d iterations)",
-                                n, a, residual, INTERPOLATE_MAX_ITERATIONS);
-        most = count > most ? count : most;
-        for (int J = 0; J < n; ++J)
-            c[3 * J + a] = x[J];
+        int failed = -1;
+        most = interpolate_components(rows, &columns, n, weights, diagonal,
+                                      values, c, scratch, &residual, &failed);
+        if (most < 0)
+            rc = gsn_error_raise(
+                GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
+                "the coefficients of a field at %d particles "
+                "did not converge (component %d: residual "
+                "%.3g after %d iterations)",
+                n, failed, residual, INTERPOLATE_MAX_ITERATIONS);
     }
     gsn_shape_rows_free(&columns);
     free(work);
     if (iterations)
-        *iterations = most;
+        *iterations = most > 0 ? most : 0;
     return rc;
 }
 

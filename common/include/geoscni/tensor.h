@@ -60,6 +60,19 @@ static inline void gsn_matrix_sym_to_voigt(const double m[9], double v[6])
     }
 }
 
+/* The smaller and the larger of two numbers that are not NaN: one
+ * instruction, where fmin and fmax are library calls (their NaN rules);
+ * for the loops over points, vertices and edges. */
+static inline double gsn_min(double a, double b)
+{
+    return b < a ? b : a;
+}
+
+static inline double gsn_max(double a, double b)
+{
+    return b > a ? b : a;
+}
+
 /* Trace and Frobenius norm of a symmetric tensor in Voigt storage. */
 static inline double gsn_voigt_trace(const double v[6])
 {
