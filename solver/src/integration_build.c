@@ -105,51 +105,11 @@ static inline void accumulate(struct kernel_thread *t, int *touched_count,
         t->dense[3 * (size_t)i + k] += v[k];
 }
 
-/* Sorts n distinct ints ascending: insertion sort on short runs under a
- * quicksort (qsort's calls through a pointer were a tenth of SCNI's rows;
- * the same order, so the same rows). */
-static void sort_ints(int *a, int n)
-{
-    while (n > 16) {
-        int m = a[n / 2], i = 0, j = n - 1;
-        int lo = a[0] < m ? a[0] : m, hi = a[0] < m ? m : a[0];
-        int pivot = a[n - 1] < lo ? lo : a[n - 1] > hi ? hi : a[n - 1];
-        while (i <= j) {
-            while (a[i] < pivot)
-                ++i;
-            while (a[j] > pivot)
-                --j;
-            if (i <= j) {
-                int v = a[i];
-                a[i++] = a[j];
-                a[j--] = v;
-            }
-        }
-        /* the smaller part by recursion, the larger by the loop */
-        if (j + 1 < n - i) {
-            sort_ints(a, j + 1);
-            a += i;
-            n -= i;
-        } else {
-            sort_ints(a + i, n - i);
-            n = j + 1;
-        }
-    }
-    for (int i = 1; i < n; ++i) {
-        int v = a[i], j = i - 1;
-        while (j >= 0 && a[j] > v) {
-            a[j + 1] = a[j];
-            --j;
-        }
-        a[j + 1] = v;
-    }
-}
-
 /* Writes the touched entries in ascending order (scaled by scale) and
  * clears the accumulator. */
 static int flush(struct kernel_thread *t, int touched_count, double scale)
 {
-    sort_ints(t->touched, touched_count);
+    gsn_sort_ints(t->touched, touched_count);
     int failed = 0;
     for (int e = 0; e < touched_count; ++e) {
         int i = t->touched[e];

@@ -443,60 +443,50 @@ static size_t grid_index(const struct gsn_rk_grid *g, const double x[3])
                                  (size_t)g->size[1] * grid_cell(g, 2, x[2]));
 }
 
-int gsn_rk_neighbours(const struct gsn_rk *rk, const double x[3], int capacity,
-                      int *index)
+void gsn_sort_ints(int *a, int n)
 {
-    int count = 0;
-    for (int level = 0; level < 2; ++level) {
-        const struct gsn_rk_grid *g = &rk->grid[level];
-        if (g->count == 0)
-            continue;
-        int lo[3], hi[3];
-        for (int k = 0; k < 3; ++k) {
-            lo[k] = grid_cell(g, k, x[k] - g->max_radius);
-            hi[k] = grid_cell(g, k, x[k] + g->max_radius);
+    while (n > 16) {
+        int m = a[n / 2], i = 0, j = n - 1;
+        int lo = a[0] < m ? a[0] : m, hi = a[0] < m ? m : a[0];
+        int pivot = a[n - 1] < lo ? lo : a[n - 1] > hi ? hi : a[n - 1];
+        while (i <= j) {
+            while (a[i] < pivot)
+                ++i;
+            while (a[j] > pivot)
+                --j;
+            if (i <= j) {
+                int v = a[i];
+                a[i++] = a[j];
+                a[j--] = v;
+            }
         }
-        for (int c2 = lo[2]; c2 <= hi[2]; ++c2)
-            for (int c1 = lo[1]; c1 <= hi[1]; ++c1)
-                for (int c0 = lo[0]; c0 <= hi[0]; ++c0) {
-                    size_t cell =
-                        (size_t)c0 + (size_t)g->size[0] *
-                                         ((size_t)c1 + (size_t)g->size[1] * c2);
-                    for (int e = g->cell_offset[cell];
-                         e < g->cell_offset[cell + 1]; ++e) {
-                        const double *xp = g->cell_data + 4 * (size_t)e;
-                        double a = xp[3];
-                        if (fabs(x[0] - xp[0]) < a && fabs(x[1] - xp[1]) < a &&
-                            fabs(x[2] - xp[2]) < a) {
-                            if (count < capacity)
-                                index[count] = g->cell_particle[e];
-                            ++count;
-                        }
-                    }
-                }
+        /* the smaller part by recursion, the larger by the loop */
+        if (j + 1 < n - i) {
+            gsn_sort_ints(a, j + 1);
+            a += i;
+            n -= i;
+        } else {
+            gsn_sort_ints(a + i, n - i);
+            n = j + 1;
+        }
     }
-    if (count > capacity)
-        return count;
-    /* Insertion sort: the lists are short and nearly sorted by cell. */
-    for (int i = 1; i < count; ++i) {
-        int v = index[i], j = i - 1;
-        while (j >= 0 && index[j] > v) {
-            index[j + 1] = index[j];
+    for (int i = 1; i < n; ++i) {
+        int v = a[i], j = i - 1;
+        while (j >= 0 && a[j] > v) {
+            a[j + 1] = a[j];
             --j;
         }
-        index[j + 1] = v;
+        a[j + 1] = v;
     }
-    return count;
 }
 
-static int compare_int(const void *a, const void *b)
-{
-    int x = *(const int *)a, y = *(const int *)b;
-    return (x > y) - (x < y);
-}
-
-int gsn_rk_box_neighbours(const struct gsn_rk *rk, const double lo[3],
-                          const double hi[3], int capacity, int *index)
+/* The particles of the cell lists whose kernel covers the point x (x not
+ * NULL: |x_k - X_Ik| < a_I) or reaches the box [lo, hi] (x NULL), into
+ * index (the first capacity), in ascending order if they fit. Returns
+ * their number. */
+static int cell_walk(const struct gsn_rk *rk, const double lo[3],
+                     const double hi[3], const double *x, int capacity,
+                     int *index)
 {
     int count = 0;
     for (int level = 0; level < 2; ++level) {
@@ -518,9 +508,14 @@ int gsn_rk_box_neighbours(const struct gsn_rk *rk, const double lo[3],
                          e < g->cell_offset[cell + 1]; ++e) {
                         const double *xp = g->cell_data + 4 * (size_t)e;
                         double a = xp[3];
-                        if (xp[0] - a < hi[0] && xp[0] + a > lo[0] &&
-                            xp[1] - a < hi[1] && xp[1] + a > lo[1] &&
-                            xp[2] - a < hi[2] && xp[2] + a > lo[2]) {
+                        int hit =
+                            x ? fabs(x[0] - xp[0]) < a &&
+                                    fabs(x[1] - xp[1]) < a &&
+                                    fabs(x[2] - xp[2]) < a
+                              : xp[0] - a < hi[0] && xp[0] + a > lo[0] &&
+                                    xp[1] - a < hi[1] && xp[1] + a > lo[1] &&
+                                    xp[2] - a < hi[2] && xp[2] + a > lo[2];
+                        if (hit) {
                             if (count < capacity)
                                 index[count] = g->cell_particle[e];
                             ++count;
@@ -529,8 +524,29 @@ int gsn_rk_box_neighbours(const struct gsn_rk *rk, const double lo[3],
                 }
     }
     if (count <= capacity)
-        qsort(index, (size_t)count, sizeof *index, compare_int);
+        gsn_sort_ints(index, count);
     return count;
+}
+
+int gsn_rk_neighbours(const struct gsn_rk *rk, const double x[3], int capacity,
+                      int *index)
+{
+    return cell_walk(rk, x, x, x, capacity, index);
+}
+
+int gsn_rk_box_neighbours(const struct gsn_rk *rk, const double lo[3],
+                          const double hi[3], int capacity, int *index)
+{
+    /* widened by a rounding's worth, so that every particle the point test
+     * takes for a point of the box is among them, however the two tests
+     * round */
+    double pad = 1e-12 * rk->max_radius, wide_lo[3], wide_hi[3];
+    for (int k = 0; k < 3; ++k) {
+        double scale = 1e-15 * (fabs(lo[k]) + fabs(hi[k]));
+        wide_lo[k] = lo[k] - pad - scale;
+        wide_hi[k] = hi[k] + pad + scale;
+    }
+    return cell_walk(rk, wide_lo, wide_hi, NULL, capacity, index);
 }
 
 int gsn_rk_neighbours_among(const struct gsn_rk *rk, const double x[3],

@@ -107,6 +107,10 @@ int gsn_rk_spacing_from_facets(const struct gsn_model *m, double cover_support,
 int gsn_rk_neighbours(const struct gsn_rk *rk, const double x[3], int capacity,
                       int *index);
 
+/* Sorts n distinct ints ascending (insertion sort on short runs under a
+ * quicksort: qsort's calls through a pointer were a tenth of SCNI's rows). */
+void gsn_sort_ints(int *a, int n);
+
 /* The particles whose kernel covers some point of the box [lo, hi]
  * (|X_Ik - y_k| < a_I for some lo <= y <= hi), in ascending order: the
  * candidates of gsn_rk_neighbours_among for points in the box. Returns
