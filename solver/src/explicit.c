@@ -500,7 +500,9 @@ int gsn_explicit_create(const struct gsn_model *m,
                     sizeof(double)),
         rc, fail);
     {
-        size_t bytes = 4 * sizeof(double) * (n3 / 3 ? n3 / 3 : 1);
+        /* aligned_alloc takes whole multiples of the alignment */
+        size_t bytes =
+            (4 * sizeof(double) * (n3 / 3 ? n3 / 3 : 1) + 63) / 64 * 64;
         e->increment = aligned_alloc(64, bytes);
         GSN_CHECK_GOTO(e->increment, rc, GSN_ERR_MEMORY, fail,
                        "cannot allocate %zu bytes of increments", bytes);
