@@ -386,8 +386,20 @@ static int nearest_label(const struct boundary *s, const double *p)
                         }
                     }
                 }
-        /* every triangle not yet seen is at least `shell` bins away */
-        if (best < (shell * s->size) * (shell * s->size))
+        /* every triangle not yet seen lies wholly outside the bins seen
+         * (a triangle is in every bin its box meets), so at least as far
+         * from p as the nearest face of those bins inside the grid */
+        double margin = INFINITY;
+        for (int k = 0; k < 3; ++k) {
+            if (centre[k] - shell > 0)
+                margin = gsn_min(
+                    margin, p[k] - (s->lo[k] + (centre[k] - shell) * s->size));
+            if (centre[k] + shell + 1 < s->grid[k])
+                margin = gsn_min(margin, s->lo[k] +
+                                             (centre[k] + shell + 1) * s->size -
+                                             p[k]);
+        }
+        if (best < margin * margin)
             break;
     }
     return label;
