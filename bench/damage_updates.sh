@@ -8,9 +8,15 @@
 # e0 = 0.02, ef = 5) at every frame, the kinetic energy's median over
 # windows of the run, the time step at the end, and where the particles
 # damaged only with updates lie (reference x-z, 2 m bins) and how far they
-# moved. About a minute a run on one core.
-# Usage: bench/damage_updates.sh [BUILD_DIR] [OUT]   (default build,
-#        out/damage_updates)
+# moved, and the median speed of the soil far from the footing and the
+# face (reference x < 4 m, z < 3 m) at every frame: how much an update sets
+# the whole body ringing. About a minute a run on one core.
+# UPDATE replaces the updated run's reference_update (e.g. "{strain: 100,
+# volume: [0.001, 1000], every: 8, min_steps: 20}": one update every 8 s,
+# to see what a single update does); EXTRA adds a line to both cases (e.g.
+# "damping: {local: 0.5}").
+# Usage: [UPDATE=...] [EXTRA=...] bench/damage_updates.sh [BUILD_DIR] [OUT]
+#        (default build, out/damage_updates)
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-build}
@@ -20,8 +26,9 @@ geoscni=$root/$build/bin/geoscni
 mkdir -p "$out"
 sed -e "s|^geometry: *|geometry: $root/geometries/|" \
     "$root/geometries/slope_I_coarse.yaml" >"$out/kept.yaml"
+[ -n "${EXTRA:-}" ] && echo "$EXTRA" >>"$out/kept.yaml"
 cp "$out/kept.yaml" "$out/updated.yaml"
-echo "reference_update: {strain: 0.2, min_steps: 20}" >>"$out/updated.yaml"
+echo "reference_update: ${UPDATE:-"{strain: 0.2, min_steps: 20}"}" >>"$out/updated.yaml"
 for name in kept updated; do
     "$geoscni" run "$out/$name.yaml" -o "$out/$name" -j "${THREADS:-1}" -q \
         --no-pictures 2>"$out/$name.log" || {
@@ -42,7 +49,15 @@ def frames(run):
     names = sorted(f["frames"].keys())
     return [(f["frames"][n].attrs.get("time", np.nan),
              f["frames"][n]["damage"][:],
-             f["frames"][n]["displacement"][:]) for n in names]
+             f["frames"][n]["displacement"][:],
+             f["frames"][n]["velocity"][:]) for n in names]
+
+
+def update_times(run):
+    rows = list(csv.DictReader(open(run + "/history.csv")))
+    count = [float(r["reference_updates"]) for r in rows]
+    return [float(rows[i]["time_s"]) for i in range(1, len(rows))
+            if count[i] > count[i - 1]]
 
 
 def history(run):
@@ -72,6 +87,19 @@ Xb = h5py.File(updated + "/model.h5", "r")["particles/position"][:]
 if X.shape != Xb.shape or not np.allclose(X, Xb):
     print("the two runs' particles differ: no comparison by particle")
     sys.exit(0)
+far = (X[:, 0] < 4) & (X[:, 2] < 3)
+print(f"median speed of the soil far from the footing (x < 4 m, z < 3 m,"
+      f" {far.sum()} particles), mm/s, kept / updated (* an update within"
+      f" the half second before):")
+row = []
+for i in range(len(a)):
+    t = b[i][0]
+    since = [u for u in update_times(updated) if t - 0.5 <= u < t]
+    row.append(f"{t:5.1f} s {1e3 * np.median(np.linalg.norm(a[i][3][far], axis=1)):5.2f}"
+               f" / {1e3 * np.median(np.linalg.norm(b[i][3][far], axis=1)):5.2f}"
+               f"{'*' if since else ' '}")
+for k in range(0, len(row), 4):
+    print("  " + "   ".join(row[k:k + 4]))
 extra = (b[-1][1] > 0.1) & (a[-1][1] <= 0.1)
 moved = np.linalg.norm(b[-1][2], axis=1)
 print(f"damaged only with updates: {extra.sum()} particles; how far they moved"
