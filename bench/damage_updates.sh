@@ -53,17 +53,12 @@ def frames(run):
              f["frames"][n]["velocity"][:]) for n in names]
 
 
-def update_times(run):
-    rows = list(csv.DictReader(open(run + "/history.csv")))
-    count = [float(r["reference_updates"]) for r in rows]
-    return [float(rows[i]["time_s"]) for i in range(1, len(rows))
-            if count[i] > count[i - 1]]
-
 
 def history(run):
     rows = list(csv.DictReader(open(run + "/history.csv")))
     return {k: np.array([float(r[k]) for r in rows])
-            for k in ("time_s", "step", "kinetic_energy_J")}
+            for k in ("time_s", "step", "kinetic_energy_J",
+                      "reference_updates")}
 
 
 a, b = frames(kept), frames(updated)
@@ -91,13 +86,14 @@ far = (X[:, 0] < 4) & (X[:, 2] < 3)
 print(f"median speed of the soil far from the footing (x < 4 m, z < 3 m,"
       f" {far.sum()} particles), mm/s, kept / updated (* an update within"
       f" the half second before):")
+updated_at = hb["time_s"][1:][np.diff(hb["reference_updates"]) > 0]
 row = []
-for i in range(len(a)):
+for i in range(min(len(a), len(b))):
     t = b[i][0]
-    since = [u for u in update_times(updated) if t - 0.5 <= u < t]
+    since = (updated_at >= t - 0.5) & (updated_at < t)
     row.append(f"{t:5.1f} s {1e3 * np.median(np.linalg.norm(a[i][3][far], axis=1)):5.2f}"
                f" / {1e3 * np.median(np.linalg.norm(b[i][3][far], axis=1)):5.2f}"
-               f"{'*' if since else ' '}")
+               f"{'*' if since.any() else ' '}")
 for k in range(0, len(row), 4):
     print("  " + "   ".join(row[k:k + 4]))
 extra = (b[-1][1] > 0.1) & (a[-1][1] <= 0.1)
