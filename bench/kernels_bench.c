@@ -120,8 +120,9 @@ int main(int argc, char **argv)
         GSN_STABILIZATION_NONE};
     const int subcells[METHODS] = {6, 6, 2, 6, 6};
     for (int s = 0; s < METHODS; ++s) {
-        struct gsn_kernel_options o = {
-            1.5, 1, method[s], 2, stab[s], 1.0, subcells[s], 0, NULL, NULL};
+        struct gsn_kernel_options o = {1.5,     1,    method[s],   2,
+                                       stab[s], 1.0,  subcells[s], 0,
+                                       NULL,    NULL, 0.0};
         struct gsn_quadrature *q = NULL;
         double t0 = omp_get_wtime(), c0 = cpu_seconds();
         if (gsn_quadrature_create(&m, &o, NULL, 0, &q)) {

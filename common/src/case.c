@@ -462,7 +462,7 @@ const char *gsn_mesher_name(enum gsn_mesher mesher)
 static int read_kernel(struct reader *r, const yaml_node_t *root,
                        struct gsn_case *c)
 {
-    static const char *const keys[] = {"support", "basis", NULL};
+    static const char *const keys[] = {"support", "basis", "window_cut", NULL};
     static const char *const bases[] = {"linear", "quadratic", NULL};
     yaml_node_t *node = mapping_find(r, root, "kernel");
     if (!node)
@@ -478,6 +478,16 @@ static int read_kernel(struct reader *r, const yaml_node_t *root,
         int index = 0;
         GSN_CALL(parse_word(r, basis, "kernel.basis", bases, &index));
         c->kernel_basis_order = index + 1;
+    }
+    if (mapping_find(r, node, "window_cut")) {
+        GSN_CALL(read_number(r, node, "kernel", "window_cut",
+                             &c->kernel_window_cut, &line));
+        GSN_CHECK(c->kernel_window_cut >= 0.0 && c->kernel_window_cut <= 1e-2,
+                  GSN_ERR_INPUT,
+                  "%s:%d: 'kernel.window_cut' must be 0 to 0.01 (the "
+                  "fraction of the window's peak below which it is cut; "
+                  "1e-3 measured in docs/kernels.md), got %g",
+                  r->path, line, c->kernel_window_cut);
     }
     return GSN_OK;
 }
@@ -1476,8 +1486,11 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
             c->particle_spacing, c->facet_points, gsn_mesher_name(c->mesher));
     write_refinements(c, out);
     fputs("}\n", out);
-    fprintf(out, "kernel: {support: %.17g, basis: %s}\n", c->kernel_support,
+    fprintf(out, "kernel: {support: %.17g, basis: %s", c->kernel_support,
             basis_names[c->kernel_basis_order == 2 ? 2 : 1]);
+    if (c->kernel_window_cut > 0.0)
+        fprintf(out, ", window_cut: %.17g", c->kernel_window_cut);
+    fputs("}\n", out);
     fprintf(out, "integration: {method: %s, ",
             gsn_integration_name(c->integration));
     if (c->integration == GSN_INTEGRATION_GAUSS)

@@ -24,6 +24,7 @@ void gsn_kernel_options_from_case(const struct gsn_case *c,
     options->stabilization_subcells = GSN_DEFAULT_STABILIZATION_SUBCELLS;
     options->cover_neighbours = 0;
     options->held_facet = options->held_particle = NULL;
+    options->window_cut = c->kernel_window_cut;
 }
 
 void gsn_quadrature_destroy(struct gsn_quadrature **q)
@@ -987,6 +988,7 @@ static int quadrature_build(const struct gsn_model *m,
     free(spacing);
     GSN_CALL(rc);
     q->rk->failure_point = failure_point;
+    q->rk->window_cut = o->window_cut;
 
     /* Psi_I(X_J), with gradients for DNI */
     int dni = o->integration == GSN_INTEGRATION_DNI;

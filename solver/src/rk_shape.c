@@ -484,6 +484,25 @@ void gsn_sort_ints(int *a, int n)
  * NULL: |x_k - X_Ik| < a_I) or reaches the box [lo, hi] (x NULL), into
  * index (the first capacity), in ascending order if they fit. Returns
  * their number. */
+/* 1 if the support of the particle at xp (radius a) covers x: inside its
+ * box and, with a window cut, where its window w(r0) w(r1) w(r2) is at
+ * least the cut times its peak w(0)^3 = (2/3)^3. */
+static inline int covers(const struct gsn_rk *rk, const double *xp, double a,
+                         const double *x)
+{
+    if (!(fabs(x[0] - xp[0]) < a && fabs(x[1] - xp[1]) < a &&
+          fabs(x[2] - xp[2]) < a))
+        return 0;
+    if (!(rk->window_cut > 0.0))
+        return 1;
+    double window = 1.0, w, dw;
+    for (int k = 0; k < 3; ++k) {
+        bspline(fabs(x[k] - xp[k]) / a, &w, &dw);
+        window *= 1.5 * w; /* w / w(0) */
+    }
+    return window >= rk->window_cut;
+}
+
 static int cell_walk(const struct gsn_rk *rk, const double lo[3],
                      const double hi[3], const double *x, int capacity,
                      int *index)
@@ -509,9 +528,7 @@ static int cell_walk(const struct gsn_rk *rk, const double lo[3],
                         const double *xp = g->cell_data + 4 * (size_t)e;
                         double a = xp[3];
                         int hit =
-                            x ? fabs(x[0] - xp[0]) < a &&
-                                    fabs(x[1] - xp[1]) < a &&
-                                    fabs(x[2] - xp[2]) < a
+                            x ? covers(rk, xp, a, x)
                               : xp[0] - a < hi[0] && xp[0] + a > lo[0] &&
                                     xp[1] - a < hi[1] && xp[1] + a > lo[1] &&
                                     xp[2] - a < hi[2] && xp[2] + a > lo[2];
@@ -558,8 +575,7 @@ int gsn_rk_neighbours_among(const struct gsn_rk *rk, const double x[3],
         int p = candidate[c];
         const double *xp = rk->position + 3 * (size_t)p;
         double a = rk->radius[p];
-        if (fabs(x[0] - xp[0]) < a && fabs(x[1] - xp[1]) < a &&
-            fabs(x[2] - xp[2]) < a) {
+        if (covers(rk, xp, a, x)) {
             if (count < capacity)
                 index[count] = p;
             ++count;

@@ -24,6 +24,7 @@ static void check_valid(const struct gsn_case *c)
     TEST_TRUE(c->geometry[0] == '/');
     TEST_NEAR(c->particle_spacing, 0.25, 0.0);
     TEST_NEAR(c->kernel_support, 1.5, 0.0);
+    TEST_NEAR(c->kernel_window_cut, 1e-3, 0.0);
     TEST_INT(c->integration, GSN_INTEGRATION_SCNI);
     TEST_NEAR(c->material.density, 1880.0, 0.0);
     TEST_NEAR(c->material.bulk_modulus, 27.4e6, 0.0);
@@ -209,7 +210,7 @@ int main(void)
     struct gsn_case c, again;
     TEST_INT(gsn_case_load("cases/valid.yaml", &c), GSN_OK);
     check_valid(&c);
-    TEST_INT(c.boundaries[2].line, 18); /* the line of "top:" in the file */
+    TEST_INT(c.boundaries[2].line, 19); /* the line of "top:" in the file */
 
     /* Round trip through the resolved YAML. */
     round_trip(&c, &again);
@@ -220,6 +221,7 @@ int main(void)
     TEST_INT(gsn_case_load("cases/minimal.yaml", &c), GSN_OK);
     TEST_NEAR(c.kernel_support, GSN_DEFAULT_KERNEL_SUPPORT, 0.0);
     TEST_INT(c.kernel_basis_order, GSN_DEFAULT_KERNEL_BASIS_ORDER);
+    TEST_NEAR(c.kernel_window_cut, 0.0, 0.0);
     TEST_INT(c.facet_points, GSN_DEFAULT_FACET_POINTS);
     TEST_INT(c.integration, GSN_INTEGRATION_SCNI);
     TEST_INT(c.stabilization, GSN_STABILIZATION_NONE);

@@ -38,8 +38,8 @@ static void check(int n, double jitter, int facet_points)
     double residual[5], e23 = 0.0, e24 = 0.0;
     int interior = 0;
     for (int s = 0; s < 5; ++s) {
-        struct gsn_kernel_options o = {1.5, 1, method[s], 2,    stab[s],
-                                       1.0, 6, 0,         NULL, NULL};
+        struct gsn_kernel_options o = {1.5, 1, method[s], 2,    stab[s], 1.0,
+                                       6,   0, NULL,      NULL, 0.0};
         struct gsn_quadrature *q = NULL;
         rc = gsn_quadrature_create(&m, &o, bg, nbg, &q);
         if (rc)

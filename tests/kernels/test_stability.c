@@ -54,8 +54,8 @@ static struct gsn_quadrature *build(const struct gsn_model *m,
                                     enum gsn_stabilization stab, int subcells,
                                     const double *bg, int nbg)
 {
-    struct gsn_kernel_options o = {1.5, 1,        method, 2,    stab,
-                                   1.0, subcells, 0,      NULL, NULL};
+    struct gsn_kernel_options o = {1.5,      1, method, 2,    stab, 1.0,
+                                   subcells, 0, NULL,   NULL, 0.0};
     struct gsn_quadrature *q = NULL;
     int rc = gsn_quadrature_create(m, &o, bg, nbg, &q);
     if (rc)

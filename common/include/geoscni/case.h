@@ -199,8 +199,10 @@ struct gsn_case {
     int facet_points;        /* quadrature points per Voronoi facet */
     enum gsn_mesher mesher;  /* gmsh's volume mesher (particles.mesher) */
     int mesher_line;
-    double kernel_support;  /* normalized support a/h */
-    int kernel_basis_order; /* 1 linear, 2 quadratic */
+    double kernel_support;    /* normalized support a/h */
+    int kernel_basis_order;   /* 1 linear, 2 quadratic */
+    double kernel_window_cut; /* the window is 0 below this fraction of its
+                                 peak (0: the paper's whole support) */
     enum gsn_integration integration;
     int gauss_points; /* per direction, GAUSS only */
     enum gsn_stabilization stabilization;

@@ -61,6 +61,14 @@ struct gsn_rk {
     double *position;
     double *radius; /* a_I, m */
     double max_radius;
+    /* The window is taken as 0 where it is below this fraction of its peak
+     * (0: the whole support): a particle covers a point only where its
+     * window is at least that. Psi stays exactly linearly complete (an RK
+     * correction of the cut window), and SCNI's eq. (24) holds as before,
+     * both cells of a facet seeing the same Psi at its points; the tensor
+     * product's corners, where the window is tiny, hold 44% of the support
+     * box at 1e-3 (docs/kernels.md, "Window cut"). */
+    double window_cut;
     /* where set (not NULL): kernel_rows_build writes there the position
      * of the ill-conditioned point it reports (the support repair of an
      * updated reference, integration_build.c) */
@@ -173,6 +181,7 @@ struct gsn_kernel_options {
      * (docs/solver.md, "Boundary values"). */
     const int *held_facet;
     const int *held_particle;
+    double window_cut; /* gsn_rk.window_cut */
 };
 
 void gsn_kernel_options_from_case(const struct gsn_case *c,
