@@ -13,6 +13,7 @@
 # footing at 5 times the case's speed (its ramp kept) is first solved to T
 # s once, and every run restarts from that state for STEPS steps (Slope I
 # with plain SCNI: T = 2 is past the peak, damage up to 0.85).
+# WINDOW_CUT=C sets kernel.window_cut (docs/kernels.md, "Window cut").
 # UPDATE_EVERY=K adds a reference-configuration update every K steps (issue
 # 15, point 4): the rate then includes them, and each run's line their count
 # and share of the solve.
@@ -25,7 +26,7 @@
 # the costs they give; copy the first run's with KEEP_MODEL=PATH).
 # Usage: bench/solver_bench.sh [BUILD_DIR] [RUNS] [STEPS] [CASE] [INTEGRATION]
 #        (default build, 3, 300, geometries/slope_I.yaml, the case's)
-#        THREADS="1 2" (default), LOADED, UPDATE_EVERY, MODEL and
+#        THREADS="1 2" (default), LOADED, WINDOW_CUT, UPDATE_EVERY, MODEL and
 #        KEEP_MODEL (unset) in the environment
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -58,6 +59,9 @@ else
 fi
 if [ -n "$integration" ]; then
     sed -i -e "s|^integration:.*|integration: $integration|" "$work/case.yaml"
+fi
+if [ -n "${WINDOW_CUT:-}" ]; then
+    sed -i -e "s|^\( *\)support:\(.*\)|\1support:\2\n\1window_cut: $WINDOW_CUT|" "$work/case.yaml"
 fi
 if [ -n "${UPDATE_EVERY:-}" ]; then
     step=$(sed -n 's/^ *step: *\([0-9.e-]*\).*/\1/p' "$work/case.yaml")

@@ -1675,6 +1675,7 @@ static int kernel_entries(const struct gsn_case *c, const struct gsn_model *m,
     GSN_CALL_GOTO(
         gsn_rk_create(n, m->position, spacing, c->kernel_support, 1, &rk), rc,
         done);
+    rk->window_cut = c->kernel_window_cut;
     double sum = 0.0;
 #pragma omp parallel for reduction(+ : sum) schedule(static)
     for (int i = 0; i < n; ++i)
