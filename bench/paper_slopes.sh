@@ -8,8 +8,9 @@
 # RIGID=1 makes the footing a rigid body the soil cannot enter (rigid: true,
 # docs/solver.md "Rigid bodies"). INTEGRATION replaces the case's
 # integration (e.g. "{method: scni, stabilization: mscni}"); UPDATE sets
-# reference_update (e.g. "off" or "{strain: 0.2, min_steps: 20}").
-# Usage: [RIGID=1] [INTEGRATION=...] [UPDATE=...] bench/paper_slopes.sh [BUILD_DIR] [OUT]
+# reference_update (e.g. "off" or "{strain: 0.2, min_steps: 20}");
+# WINDOW_CUT sets kernel.window_cut (docs/kernels.md, "Window cut").
+# Usage: [RIGID=1] [INTEGRATION=...] [UPDATE=...] [WINDOW_CUT=...] bench/paper_slopes.sh [BUILD_DIR] [OUT]
 #        [FACTOR] [SETTLEMENT] [CASES]
 #        (default build, out/paper, 5, 1.0, "slope_I slope_II")
 set -eu
@@ -42,6 +43,8 @@ for name in $cases; do
         -e "s|^\( *every:\).*|\1 $every|" \
         -e "${integration:+s|^integration:.*|integration: $integration|}" \
         "$source_case"; } >"$case_file"
+    [ -z "${WINDOW_CUT:-}" ] ||
+        sed -i -e "s|^\( *\)support:\(.*\)|\1support:\2\n\1window_cut: $WINDOW_CUT|" "$case_file"
     echo "$name: footing at $v m/s to $settlement m ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
     t=$(seconds)
     "$geoscni" pre "$case_file" -o "$out/$name" -q
