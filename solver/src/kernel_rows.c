@@ -38,9 +38,14 @@ int kernel_evaluate(const struct gsn_rk *rk, const double *x, int want_gradient,
                  "%s %d at (%g, %g, %g): moment matrix singular or "
                  "ill-conditioned (condition number %.3g, limit %.3g) with %d "
                  "particles covering it (the basis has %d terms): enlarge "
-                 "the kernel support",
+                 "the kernel support%s",
                  what, which, x[0], x[1], x[2], condition,
-                 GSN_RK_CONDITION_LIMIT, *count, rk->basis_size);
+                 GSN_RK_CONDITION_LIMIT, *count, rk->basis_size,
+                 rk->window_cut > 0.0
+                     ? " or lower kernel.window_cut, which leaves out the "
+                       "particles whose window is below that fraction of "
+                       "its peak"
+                     : "");
         memcpy(t->failed_at, x, sizeof t->failed_at);
         return GSN_ERR_NUMERICAL;
     }

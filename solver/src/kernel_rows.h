@@ -25,7 +25,7 @@ struct kernel_thread {
     int *out_index;
     double *out_value;
     double *out_gradient;
-    char message[256];
+    char message[384];
     double failed_at[3]; /* the point of a GSN_ERR_NUMERICAL failure */
     /* Psi at points kept for later rows of the same chunk (kernel_cache_*):
      * per point its slot or -1 (cache_points long, made on first use),

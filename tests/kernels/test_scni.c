@@ -292,6 +292,15 @@ static void check_window_cut(void)
     TEST_TRUE(change <= 1e-2);
     gsn_quadrature_destroy(&whole);
     gsn_quadrature_destroy(&cut);
+    /* a cut that leaves too few particles for M: the message names it */
+    o.stabilization = GSN_STABILIZATION_NONE;
+    o.window_cut = 0.5;
+    gsn_error_clear();
+    TEST_INT(gsn_quadrature_create(&m, &o, NULL, 0, &cut), GSN_ERR_NUMERICAL);
+    TEST_TRUE(cut == NULL);
+    TEST_TRUE(strstr(gsn_error_message(), "lower kernel.window_cut") != NULL);
+    printf("window cut 0.5: %s\n", gsn_error_message());
+    gsn_error_clear();
     gsn_model_free(&m);
 }
 
