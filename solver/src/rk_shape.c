@@ -480,10 +480,6 @@ void gsn_sort_ints(int *a, int n)
     }
 }
 
-/* The particles of the cell lists whose kernel covers the point x (x not
- * NULL: |x_k - X_Ik| < a_I) or reaches the box [lo, hi] (x NULL), into
- * index (the first capacity), in ascending order if they fit. Returns
- * their number. */
 /* 1 if the support of the particle at xp (radius a) covers x: inside its
  * box and, with a window cut, where its window w(r0) w(r1) w(r2) is at
  * least the cut times its peak w(0)^3 = (2/3)^3. */
@@ -503,6 +499,9 @@ static inline int covers(const struct gsn_rk *rk, const double *xp, double a,
     return window >= rk->window_cut;
 }
 
+/* The particles of the cell lists whose kernel covers the point x (x not
+ * NULL: covers) or reaches the box [lo, hi] (x NULL), into index (the
+ * first capacity), in ascending order if they fit. Returns their number. */
 static int cell_walk(const struct gsn_rk *rk, const double lo[3],
                      const double hi[3], const double *x, int capacity,
                      int *index)

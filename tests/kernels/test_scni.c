@@ -22,6 +22,18 @@ static struct gsn_quadrature *build(const struct gsn_model *m,
     return q;
 }
 
+/* Plain SCNI with the given support and basis, the whole window. */
+static struct gsn_kernel_options scni_options(double support, int basis_order)
+{
+    return (struct gsn_kernel_options){.support = support,
+                                       .basis_order = basis_order,
+                                       .integration = GSN_INTEGRATION_SCNI,
+                                       .gauss_points = 2,
+                                       .stabilization = GSN_STABILIZATION_NONE,
+                                       .stabilization_coefficient = 1.0,
+                                       .stabilization_subcells = 6};
+}
+
 static void check_lattice(int nx, int ny, int nz, int gauss)
 {
     const int size[3] = {nx, ny, nz};
@@ -62,17 +74,7 @@ static void check_lattice(int nx, int ny, int nz, int gauss)
     TEST_TRUE(spacing_error <= 1e-14);
 
     /* quadratic basis: SCNI stays linearly exact */
-    struct gsn_kernel_options o2 = {2.5,
-                                    2,
-                                    GSN_INTEGRATION_SCNI,
-                                    2,
-                                    GSN_STABILIZATION_NONE,
-                                    1.0,
-                                    6,
-                                    0,
-                                    NULL,
-                                    NULL,
-                                    0.0};
+    struct gsn_kernel_options o2 = scni_options(2.5, 2);
     struct gsn_quadrature *quadratic = NULL;
     TEST_INT(gsn_quadrature_create(&m, &o2, NULL, 0, &quadratic), GSN_OK);
     double r_quadratic = quadratic ? fixture_patch_test(&m, quadratic) : 1.0;
@@ -215,17 +217,7 @@ static void check_window_cut(void)
     const double h = 0.31;
     struct gsn_model m;
     TEST_INT(fixture_lattice(size, h, 2, &m), GSN_OK);
-    struct gsn_kernel_options o = {1.5,
-                                   1,
-                                   GSN_INTEGRATION_SCNI,
-                                   2,
-                                   GSN_STABILIZATION_NONE,
-                                   1.0,
-                                   6,
-                                   0,
-                                   NULL,
-                                   NULL,
-                                   0.0};
+    struct gsn_kernel_options o = scni_options(1.5, 1);
     struct gsn_quadrature *whole = NULL, *cut = NULL;
     TEST_INT(gsn_quadrature_create(&m, &o, NULL, 0, &whole), GSN_OK);
     o.window_cut = 1e-3;
