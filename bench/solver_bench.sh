@@ -13,7 +13,10 @@
 # footing at 5 times the case's speed (its ramp kept) is first solved to T
 # s once, and every run restarts from that state for STEPS steps (Slope I
 # with plain SCNI: T = 2 is past the peak, damage up to 0.85).
-# WINDOW_CUT=C sets kernel.window_cut (docs/kernels.md, "Window cut").
+# WINDOW_CUT="C1 C2 ..." sets kernel.window_cut (docs/kernels.md, "Window
+# cut"): one value, or a list to compare, each with its own loading run,
+# whose runs alternate (C1, C2, ..., then again) so that the host's drift
+# falls on all alike; the medians of each and their ratios to the first's.
 # UPDATE_EVERY=K adds a reference-configuration update every K steps (issue
 # 15, point 4): the rate then includes them, and each run's line their count
 # and share of the solve.
@@ -60,9 +63,6 @@ fi
 if [ -n "$integration" ]; then
     sed -i -e "s|^integration:.*|integration: $integration|" "$work/case.yaml"
 fi
-if [ -n "${WINDOW_CUT:-}" ]; then
-    sed -i -e "s|^\( *\)support:\(.*\)|\1support:\2\n\1window_cut: $WINDOW_CUT|" "$work/case.yaml"
-fi
 if [ -n "${UPDATE_EVERY:-}" ]; then
     step=$(sed -n 's/^ *step: *\([0-9.e-]*\).*/\1/p' "$work/case.yaml")
     echo "reference_update: {every: $(echo "$UPDATE_EVERY ${step:-1e-3}" | awk '{print $1 * $2}'), min_steps: 1}" >>"$work/case.yaml"
@@ -73,39 +73,49 @@ else
     "$geoscni" pre "$work/case.yaml" -o "$work/out" -q
 fi
 [ -n "${KEEP_MODEL:-}" ] && cp "$work/out/model.h5" "$KEEP_MODEL"
+mv "$work/out" "$work/model"
+# the variants: the case as it is, or one case a window cut
+cuts=${WINDOW_CUT:--}
+for cut in $cuts; do
+    cp "$work/case.yaml" "$work/case.$cut.yaml"
+    [ "$cut" = - ] ||
+        sed -i -e "s|^\( *\)support:\(.*\)|\1support:\2\n\1window_cut: $cut|" "$work/case.$cut.yaml"
+    cp -r "$work/model" "$work/start.$cut"
+done
 restart=
 if [ -n "$loaded" ]; then
-    sed -e "s|^\( *end:\).*|\1 $loaded|" "$work/case.yaml" >"$work/load.yaml"
-    "$geoscni" solve "$work/load.yaml" -o "$work/out" -q || {
-        echo "the loading run to $loaded s failed: see above" >&2
-        exit 1
-    }
-    mv "$work/out" "$work/loaded"
+    for cut in $cuts; do
+        sed -e "s|^\( *end:\).*|\1 $loaded|" "$work/case.$cut.yaml" >"$work/load.yaml"
+        "$geoscni" solve "$work/load.yaml" -o "$work/start.$cut" -q || {
+            echo "the loading run to $loaded s failed: see above" >&2
+            exit 1
+        }
+        echo "loaded to t = $loaded s (footing at $fast m/s)$([ "$cut" = - ] || echo ", window cut $cut"): max damage $(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "max_damage") c = i } END { print $c }' "$work/start.$cut/history.csv")"
+    done
     restart=--restart
-    echo "loaded to t = $loaded s (footing at $fast m/s): max damage $(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "max_damage") c = i } END { print $c }' "$work/loaded/history.csv")"
 fi
 echo "geoscni solve $(basename "$case_file") ($(grep '^integration:' "$work/case.yaml" | sed 's/ *#.*//')), $steps steps, $runs runs per thread count ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
 for threads in $thread_counts; do
     i=1
-    : >"$work/rates.$threads"
+    for cut in $cuts; do : >"$work/rates.$threads.$cut"; done
     while [ "$i" -le "$runs" ]; do
-        if [ -n "$loaded" ]; then
+        for cut in $cuts; do
             rm -rf "$work/out"
-            cp -r "$work/loaded" "$work/out"
-        fi
-        OMP_WAIT_POLICY=passive /usr/bin/time -f "peak %M KB" "$geoscni" solve "$work/case.yaml" -o "$work/out" -j "$threads" \
-            $restart >"$work/log" 2>&1 || {
-            echo "  $threads thread(s), run $i failed: $(grep 'error:' "$work/log")" >&2
-            exit 1
-        }
-        rate=$(tr '\r' '\n' <"$work/log" | grep 'took' | sed 's/.*  \([0-9.e+]*\) particle-steps.*/\1/')
-        particles=$(grep '^solver: [0-9]* particles' "$work/log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
-        phases=$(grep '^step time:' "$work/log" | sed 's/^step time: //')
-        updates=$(grep '^reference updates:' "$work/log" | sed 's/^reference updates: \([0-9]*\) .*, \([0-9.e+-]* s\), \([0-9.]*%\) of the solve.*/\1 updates, \2, \3 of the solve/')
-        echo "  $threads thread(s), run $i: $rate particle-steps/s ($particles particles)${phases:+; $phases}${updates:+; $updates}"
-        echo "$rate" >>"$work/rates.$threads"
-        bytes=$(sed -n 's/^step data: \([0-9.]*\) kB.*/\1/p' "$work/log")
-        peak=$(sed -n 's/^peak \([0-9]*\) KB$/\1/p' "$work/log")
+            cp -r "$work/start.$cut" "$work/out"
+            OMP_WAIT_POLICY=passive /usr/bin/time -f "peak %M KB" "$geoscni" solve "$work/case.$cut.yaml" -o "$work/out" -j "$threads" \
+                $restart >"$work/log" 2>&1 || {
+                echo "  $threads thread(s), run $i failed: $(grep 'error:' "$work/log")" >&2
+                exit 1
+            }
+            rate=$(tr '\r' '\n' <"$work/log" | grep 'took' | sed 's/.*  \([0-9.e+]*\) particle-steps.*/\1/')
+            particles=$(grep '^solver: [0-9]* particles' "$work/log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
+            phases=$(grep '^step time:' "$work/log" | sed 's/^step time: //')
+            updates=$(grep '^reference updates:' "$work/log" | sed 's/^reference updates: \([0-9]*\) .*, \([0-9.e+-]* s\), \([0-9.]*%\) of the solve.*/\1 updates, \2, \3 of the solve/')
+            echo "  $threads thread(s)$([ "$cut" = - ] || echo ", cut $cut"), run $i: $rate particle-steps/s ($particles particles)${phases:+; $phases}${updates:+; $updates}"
+            echo "$rate" >>"$work/rates.$threads.$cut"
+            sed -n 's/^step data: \([0-9.]*\) kB.*/\1/p' "$work/log" >"$work/bytes.$cut"
+            sed -n 's/^peak \([0-9]*\) KB$/\1/p' "$work/log" >"$work/peak.$cut"
+        done
         i=$((i + 1))
     done
 done
@@ -114,21 +124,28 @@ done
 # memory traffic of the step's least data (gsn_explicit_step_bytes) and the
 # rate at which that data alone would fill the bandwidth (the roof).
 stream=$root/$build/bin/stream
-one=
 for threads in $thread_counts; do
-    median=$(sort -g "$work/rates.$threads" | sed -n "$(((runs + 1) / 2))p")
-    [ "$threads" = 1 ] && one=$median
     triad=
     [ -x "$stream" ] && triad=$("$stream" "$threads" | sed -n 's/.*: \([0-9.]*\) GB\/s$/\1/p')
-    awk -v t="$threads" -v m="$median" -v one="$one" -v kb="${bytes:-0}" \
-        -v s="${triad:-0}" -v peak="${peak:-0}" -v n="$particles" 'BEGIN {
-        line = sprintf("median, %d thread(s): %.3g particle-steps/s", t, m)
-        if (one != "" && t > 1)
-            line = line sprintf(" (parallel efficiency %.2f)", m / (t * one))
-        if (kb > 0 && s > 0)
-            line = line sprintf("; step data %.2f kB a particle-step: %.1f GB/s, %.0f%% of STREAM triad %.1f GB/s, roof %.3g particle-steps/s",
-                kb, m * kb * 1e-6, 100 * m * kb * 1e-6 / s, s, s * 1e6 / kb)
-        if (peak > 0 && n > 0)
-            line = line sprintf("; peak memory %.1f kB a particle", 1.024 * peak / n)
-        print line }'
+    first=
+    for cut in $cuts; do
+        median=$(sort -g "$work/rates.$threads.$cut" | sed -n "$(((runs + 1) / 2))p")
+        one=$(sort -g "$work/rates.1.$cut" 2>/dev/null | sed -n "$(((runs + 1) / 2))p")
+        [ -n "$first" ] || first=$median
+        awk -v t="$threads" -v m="$median" -v one="$one" -v kb="$(cat "$work/bytes.$cut")" \
+            -v s="${triad:-0}" -v peak="$(cat "$work/peak.$cut")" -v n="$particles" \
+            -v cut="$cut" -v first="$first" 'BEGIN {
+            line = sprintf("median, %d thread(s)%s: %.3g particle-steps/s", t,
+                cut == "-" ? "" : ", cut " cut, m)
+            if (cut != "-" && m != first)
+                line = line sprintf(" (%.2f x the first'"'"'s)", m / first)
+            if (one != "" && t > 1)
+                line = line sprintf(" (parallel efficiency %.2f)", m / (t * one))
+            if (kb > 0 && s > 0)
+                line = line sprintf("; step data %.2f kB a particle-step: %.1f GB/s, %.0f%% of STREAM triad %.1f GB/s, roof %.3g particle-steps/s",
+                    kb, m * kb * 1e-6, 100 * m * kb * 1e-6 / s, s, s * 1e6 / kb)
+            if (peak > 0 && n > 0)
+                line = line sprintf("; peak memory %.1f kB a particle", 1.024 * peak / n)
+            print line }'
+    done
 done

@@ -482,11 +482,12 @@ static int read_kernel(struct reader *r, const yaml_node_t *root,
     if (mapping_find(r, node, "window_cut")) {
         GSN_CALL(read_number(r, node, "kernel", "window_cut",
                              &c->kernel_window_cut, &line));
-        GSN_CHECK(c->kernel_window_cut >= 0.0 && c->kernel_window_cut <= 1e-2,
+        GSN_CHECK(c->kernel_window_cut >= 0.0 && c->kernel_window_cut <= 1e-3,
                   GSN_ERR_INPUT,
-                  "%s:%d: 'kernel.window_cut' must be 0 to 0.01 (the "
+                  "%s:%d: 'kernel.window_cut' must be 0 to 0.001 (the "
                   "fraction of the window's peak below which it is cut; "
-                  "1e-3 measured in docs/kernels.md), got %g",
+                  "0.01 halves NSNI's hold on checkerboards: "
+                  "docs/kernels.md), got %g",
                   r->path, line, c->kernel_window_cut);
     }
     return GSN_OK;

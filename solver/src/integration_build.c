@@ -675,22 +675,27 @@ static int held_weights(const double *X, int count, const double x[3],
 
 /* The stencil of boundary point b (held_stencils): up to HELD_STENCIL
  * particles nearest to it, on its facet's surface and holding what the
- * facet holds, from the row of the facet's owner; count 0 if the facet
- * holds nothing or the interpolant does not reproduce. */
+ * facet holds, among those whose whole window (uncut) covers the facet's
+ * owner; count 0 if the facet holds nothing or the interpolant does not
+ * reproduce. candidate: GSN_RK_MAX_NEIGHBOURS ints of scratch. */
 static int held_point(const struct gsn_model *m,
                       const struct gsn_kernel_options *o,
-                      const struct gsn_shape_rows *values,
+                      const struct gsn_rk *whole,
                       const struct gsn_quadrature *q, int b, int *particle,
-                      double *weight)
+                      double *weight, int *candidate)
 {
     int f = q->boundary_point_facet[b], K = o->held_facet[f];
     if (!K)
         return 0;
     const double *x = &q->boundary_point_position[3 * (size_t)b];
     int owner = m->facet_owner[f], surface = m->facet_surface[f], count = 0;
+    int found = gsn_rk_neighbours(whole, &m->position[3 * (size_t)owner],
+                                  GSN_RK_MAX_NEIGHBOURS, candidate);
+    if (found > GSN_RK_MAX_NEIGHBOURS)
+        found = GSN_RK_MAX_NEIGHBOURS;
     double distance[HELD_STENCIL];
-    for (int e = values->offset[owner]; e < values->offset[owner + 1]; ++e) {
-        int J = values->index[e];
+    for (int c = 0; c < found; ++c) {
+        int J = candidate[c];
         if ((o->held_particle[J] & K) != K ||
             !gsn_model_particle_on_surface(m, J, surface))
             continue;
@@ -739,11 +744,24 @@ static int held_build(const struct gsn_model *m,
         h->facet_point[f] = -1;
     for (int b = nb - 1; b >= 0; --b)
         h->facet_point[q->boundary_point_facet[b]] = b;
-#pragma omp parallel for schedule(dynamic, 64)
+    /* the stencils' candidates do not depend on kernel.window_cut */
+    struct gsn_rk whole = *q->rk;
+    whole.window_cut = 0.0;
+#pragma omp parallel
+    {
+        int *candidate = malloc(GSN_RK_MAX_NEIGHBOURS * sizeof *candidate);
+#pragma omp for schedule(dynamic, 64)
+        for (int b = 0; b < nb; ++b)
+            h->offset[b + 1] =
+                candidate ? held_point(m, o, &whole, q, b,
+                                       &h->particle[HELD_STENCIL * b],
+                                       &h->weight[HELD_STENCIL * b], candidate)
+                          : -1;
+        free(candidate);
+    }
     for (int b = 0; b < nb; ++b)
-        h->offset[b + 1] =
-            held_point(m, o, values, q, b, &h->particle[HELD_STENCIL * b],
-                       &h->weight[HELD_STENCIL * b]);
+        GSN_CHECK_GOTO(h->offset[b + 1] >= 0, rc, GSN_ERR_MEMORY, done,
+                       "cannot allocate held stencils' candidates");
     /* compact the stencils (offset[b + 1] held the count) */
     for (int b = 0; b < nb; ++b) {
         int count = h->offset[b + 1];

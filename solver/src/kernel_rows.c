@@ -10,42 +10,58 @@
 #include <stdlib.h>
 #include <string.h>
 
-int kernel_evaluate(const struct gsn_rk *rk, const double *x, int want_gradient,
-                    struct kernel_thread *t, int *count, const char *what,
-                    int which)
+/* The particles covering x under rk and Psi there (kernel_evaluate);
+ * returns -1 if they are too many, 1 if M failed, else 0. */
+static int evaluate_window(const struct gsn_rk *rk, const double *x,
+                           int want_gradient, struct kernel_thread *t,
+                           int *count, double *condition)
 {
     *count =
         t->candidate_count >= 0
             ? gsn_rk_neighbours_among(rk, x, t->candidate, t->candidate_count,
                                       GSN_RK_MAX_NEIGHBOURS, t->index)
             : gsn_rk_neighbours(rk, x, GSN_RK_MAX_NEIGHBOURS, t->index);
-    if (*count > GSN_RK_MAX_NEIGHBOURS) {
+    if (*count > GSN_RK_MAX_NEIGHBOURS)
+        return -1;
+    return (want_gradient == 2
+                ? gsn_rk_hessian_point(rk, x, *count, t->index, t->work,
+                                       t->hessian, condition)
+                : gsn_rk_shape_point(rk, x, *count, t->index, t->work, t->psi,
+                                     want_gradient ? t->gradient : NULL,
+                                     condition)) != 0;
+}
+
+int kernel_evaluate(const struct gsn_rk *rk, const double *x, int want_gradient,
+                    struct kernel_thread *t, int *count, const char *what,
+                    int which)
+{
+    double condition;
+    int failed = evaluate_window(rk, x, want_gradient, t, count, &condition);
+    /* where the cut leaves a poor set (a corner of a coarse body), the
+     * whole window at this point: a function of x alone, so both cells of
+     * a facet still see the same Psi (eq. (24)) */
+    if (rk->window_cut > 0.0 && failed >= 0 &&
+        (failed || condition > GSN_RK_CUT_CONDITION_LIMIT)) {
+        struct gsn_rk whole = *rk;
+        whole.window_cut = 0.0;
+        failed =
+            evaluate_window(&whole, x, want_gradient, t, count, &condition);
+    }
+    if (failed < 0) {
         snprintf(t->message, sizeof t->message,
                  "%s %d at (%g, %g, %g) is covered by %d kernels, more than "
                  "%d: the support is too large",
                  what, which, x[0], x[1], x[2], *count, GSN_RK_MAX_NEIGHBOURS);
         return GSN_ERR_INPUT;
     }
-    double condition;
-    int failed = want_gradient == 2
-                     ? gsn_rk_hessian_point(rk, x, *count, t->index, t->work,
-                                            t->hessian, &condition)
-                     : gsn_rk_shape_point(
-                           rk, x, *count, t->index, t->work, t->psi,
-                           want_gradient ? t->gradient : NULL, &condition);
     if (failed) {
         snprintf(t->message, sizeof t->message,
                  "%s %d at (%g, %g, %g): moment matrix singular or "
                  "ill-conditioned (condition number %.3g, limit %.3g) with %d "
                  "particles covering it (the basis has %d terms): enlarge "
-                 "the kernel support%s",
+                 "the kernel support",
                  what, which, x[0], x[1], x[2], condition,
-                 GSN_RK_CONDITION_LIMIT, *count, rk->basis_size,
-                 rk->window_cut > 0.0
-                     ? " or lower kernel.window_cut, which leaves out the "
-                       "particles whose window is below that fraction of "
-                       "its peak"
-                     : "");
+                 GSN_RK_CONDITION_LIMIT, *count, rk->basis_size);
         memcpy(t->failed_at, x, sizeof t->failed_at);
         return GSN_ERR_NUMERICAL;
     }

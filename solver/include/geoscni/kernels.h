@@ -33,6 +33,14 @@ extern "C" {
  * the reproducing conditions of eq. (18) no longer hold to 1e-8. */
 #define GSN_RK_CONDITION_LIMIT 1e8
 
+/* With a window cut, a point whose cut window's moment matrix is
+ * conditioned worse than this takes the whole window instead
+ * (kernel_evaluate). On Slope I's 530,000 kernel points the cut windows'
+ * regular matrices reach 641 (cut 1e-3) and 582 (1e-2) and the starved
+ * ones are singular (5.9e17, inf): the limit sits between, well above the
+ * whole window's own (641). */
+#define GSN_RK_CUT_CONDITION_LIMIT 1e4
+
 /* Sub-cells per nodal domain of modified SCNI: 6 groups the pyramids over
  * the facets by the dominant signed axis of their normal, 2 by the sign
  * only (less than half the storage, slightly weaker: docs/kernels.md). */
@@ -67,7 +75,9 @@ struct gsn_rk {
      * correction of the cut window), and SCNI's eq. (24) holds as before,
      * both cells of a facet seeing the same Psi at its points; the tensor
      * product's corners, where the window is tiny, hold 44% of the support
-     * box at 1e-3 (docs/kernels.md, "Window cut"). */
+     * box at 1e-3 (docs/kernels.md, "Window cut"). A point whose cut
+     * window leaves M ill-conditioned (GSN_RK_CUT_CONDITION_LIMIT) takes
+     * the whole window: a function of the point alone, like the cut. */
     double window_cut;
     /* where set (not NULL): kernel_rows_build writes there the position
      * of the ill-conditioned point it reports (the support repair of an
