@@ -1255,6 +1255,7 @@ static void case_set_defaults(struct gsn_case *c)
     c->facet_points = GSN_DEFAULT_FACET_POINTS;
     c->kernel_support = GSN_DEFAULT_KERNEL_SUPPORT;
     c->kernel_basis_order = GSN_DEFAULT_KERNEL_BASIS_ORDER;
+    c->kernel_window_cut = GSN_DEFAULT_KERNEL_WINDOW_CUT;
     c->integration = GSN_INTEGRATION_SCNI;
     c->gauss_points = GSN_DEFAULT_GAUSS_POINTS;
     c->stabilization = GSN_STABILIZATION_NONE;
@@ -1487,11 +1488,9 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
             c->particle_spacing, c->facet_points, gsn_mesher_name(c->mesher));
     write_refinements(c, out);
     fputs("}\n", out);
-    fprintf(out, "kernel: {support: %.17g, basis: %s", c->kernel_support,
-            basis_names[c->kernel_basis_order == 2 ? 2 : 1]);
-    if (c->kernel_window_cut > 0.0)
-        fprintf(out, ", window_cut: %.17g", c->kernel_window_cut);
-    fputs("}\n", out);
+    fprintf(out, "kernel: {support: %.17g, basis: %s, window_cut: %.17g}\n",
+            c->kernel_support, basis_names[c->kernel_basis_order == 2 ? 2 : 1],
+            c->kernel_window_cut);
     fprintf(out, "integration: {method: %s, ",
             gsn_integration_name(c->integration));
     if (c->integration == GSN_INTEGRATION_GAUSS)
@@ -1598,6 +1597,23 @@ int gsn_case_to_yaml_string(const struct gsn_case *c, char **text)
                               "gsn_case_write_yaml(c, stream)");
     }
     return GSN_OK;
+}
+
+void gsn_case_yaml_upgrade(char *text)
+{
+    char *line = strstr(text, "\nkernel: {");
+    if (!line)
+        return;
+    char *close = strchr(line + 1, '}');
+    char *end = strchr(line + 1, '\n');
+    if (!close || (end && end < close))
+        return;
+    static const char key[] = ", window_cut: 0";
+    for (const char *k = line; k + 10 <= close; ++k)
+        if (!strncmp(k, "window_cut", 10))
+            return;
+    memmove(close + strlen(key), close, strlen(close) + 1);
+    memcpy(close, key, strlen(key));
 }
 
 /* ---- economy keys (docs/economy.md) ------------------------------------ */

@@ -20,6 +20,10 @@ enum { GSN_MAX_OUTPUT_TIMES = 1000 };
 /* Defaults of the optional keys. */
 #define GSN_DEFAULT_KERNEL_SUPPORT 1.5   /* a/h, seed paper section 6 */
 #define GSN_DEFAULT_KERNEL_BASIS_ORDER 1 /* linear basis */
+/* kernel.window_cut: the window's corners below 1e-3 of its peak left out,
+ * a third fewer gradient entries; 0 is the paper's whole window
+ * (docs/kernels.md, "Window cut": the default since 2026-12-06) */
+#define GSN_DEFAULT_KERNEL_WINDOW_CUT 1e-3
 #define GSN_DEFAULT_FACET_POINTS 1       /* facet centroid rule */
 #define GSN_DEFAULT_GAUSS_POINTS 2       /* per direction, per cell */
 #define GSN_DEFAULT_TIME_STEP_SAFETY 0.8 /* fraction of the stable step */
@@ -277,6 +281,13 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out);
 
 /* The same as a malloc'ed string; the caller frees it. */
 int gsn_case_to_yaml_string(const struct gsn_case *c, char **text);
+
+/* A stored case text as this version writes it: a kernel line without
+ * window_cut (written before 2026-12-06, night, when the key was written
+ * only if not 0 and 0 was the default) gets ", window_cut: 0". In place;
+ * text must have room for GSN_CASE_YAML_UPGRADE_ROOM more characters. */
+enum { GSN_CASE_YAML_UPGRADE_ROOM = 16 };
+void gsn_case_yaml_upgrade(char *text);
 
 /* The case's name: its file name without the .yaml (or .yml) ending, e.g.
  * "slope_I" for geometries/slope_I.yaml; names the output folder and the
