@@ -1599,21 +1599,26 @@ int gsn_case_to_yaml_string(const struct gsn_case *c, char **text)
     return GSN_OK;
 }
 
-void gsn_case_yaml_upgrade(char *text)
+void gsn_case_yaml_upgrade(char **text)
 {
-    char *line = strstr(text, "\nkernel: {");
+    static const char name[] = "window_cut", key[] = ", window_cut: 0";
+    const char *line = strstr(*text, "\nkernel: {");
     if (!line)
         return;
-    char *close = strchr(line + 1, '}');
-    char *end = strchr(line + 1, '\n');
+    const char *close = strchr(line + 1, '}');
+    const char *end = strchr(line + 1, '\n');
     if (!close || (end && end < close))
         return;
-    static const char key[] = ", window_cut: 0";
-    for (const char *k = line; k + 10 <= close; ++k)
-        if (!strncmp(k, "window_cut", 10))
+    for (const char *k = line; k + strlen(name) <= close; ++k)
+        if (!strncmp(k, name, strlen(name)))
             return;
-    memmove(close + strlen(key), close, strlen(close) + 1);
-    memcpy(close, key, strlen(key));
+    size_t at = (size_t)(close - *text), length = strlen(*text);
+    char *grown = realloc(*text, length + strlen(key) + 1);
+    if (!grown)
+        return;
+    memmove(grown + at + strlen(key), grown + at, length - at + 1);
+    memcpy(grown + at, key, strlen(key));
+    *text = grown;
 }
 
 /* ---- economy keys (docs/economy.md) ------------------------------------ */

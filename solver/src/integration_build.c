@@ -745,8 +745,7 @@ static int held_build(const struct gsn_model *m,
     for (int b = nb - 1; b >= 0; --b)
         h->facet_point[q->boundary_point_facet[b]] = b;
     /* the stencils' candidates do not depend on kernel.window_cut */
-    struct gsn_rk whole = *q->rk;
-    whole.window_cut = 0.0;
+    const struct gsn_rk whole = gsn_rk_whole_window(q->rk);
 #pragma omp parallel
     {
         int *candidate = malloc(GSN_RK_MAX_NEIGHBOURS * sizeof *candidate);

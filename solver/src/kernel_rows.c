@@ -42,8 +42,7 @@ int kernel_evaluate(const struct gsn_rk *rk, const double *x, int want_gradient,
      * a facet still see the same Psi (eq. (24)) */
     if (rk->window_cut > 0.0 && failed >= 0 &&
         (failed || condition > GSN_RK_CUT_CONDITION_LIMIT)) {
-        struct gsn_rk whole = *rk;
-        whole.window_cut = 0.0;
+        const struct gsn_rk whole = gsn_rk_whole_window(rk);
         failed =
             evaluate_window(&whole, x, want_gradient, t, count, &condition);
     }

@@ -1198,11 +1198,7 @@ static int check_restart_case(struct run *r)
 {
     char *then = NULL, *now = NULL;
     GSN_CALL(gsn_h5_attr_read_string(r->results, GSN_ATTR_CASE, &then));
-    char *grown = realloc(then, strlen(then) + GSN_CASE_YAML_UPGRADE_ROOM + 1);
-    if (grown) {
-        then = grown;
-        gsn_case_yaml_upgrade(then);
-    }
+    gsn_case_yaml_upgrade(&then);
     struct gsn_case *same = malloc(sizeof *same);
     int rc = same ? GSN_OK
                   : gsn_error_raise(GSN_ERR_MEMORY, __FILE__, __LINE__,
@@ -1667,8 +1663,7 @@ static const char *method_text(const struct gsn_case *c, char *text,
 /* The kernels that cover each particle, summed over the particles: the
  * length of the shape-function rows at the particles, which the smoothed
  * gradients' rows follow (a thin slab has more of them per particle than
- * a body of the same spacing). */
-/* The kernel entries at the particles: *entries with the case's window cut,
+ * a body of the same spacing); *entries with the case's window cut,
  * *whole with the whole window. */
 static int kernel_entries(const struct gsn_case *c, const struct gsn_model *m,
                           double *entries, double *whole)
@@ -1682,17 +1677,19 @@ static int kernel_entries(const struct gsn_case *c, const struct gsn_model *m,
     GSN_CALL_GOTO(
         gsn_rk_create(n, m->position, spacing, c->kernel_support, 1, &rk), rc,
         done);
-    struct gsn_rk cut = *rk;
-    cut.window_cut = c->kernel_window_cut;
+    rk->window_cut = c->kernel_window_cut;
+    const struct gsn_rk uncut = gsn_rk_whole_window(rk);
+    const int cut = rk->window_cut > 0.0;
     double sum = 0.0, sum_whole = 0.0;
 #pragma omp parallel for reduction(+ : sum, sum_whole) schedule(static)
     for (int i = 0; i < n; ++i) {
-        sum += gsn_rk_neighbours(&cut, m->position + 3 * (size_t)i, 0, NULL);
-        sum_whole +=
-            gsn_rk_neighbours(rk, m->position + 3 * (size_t)i, 0, NULL);
+        const double *x = m->position + 3 * (size_t)i;
+        sum += gsn_rk_neighbours(rk, x, 0, NULL);
+        if (cut)
+            sum_whole += gsn_rk_neighbours(&uncut, x, 0, NULL);
     }
     *entries = sum;
-    *whole = sum_whole;
+    *whole = cut ? sum_whole : sum;
 done:
     gsn_rk_destroy(&rk);
     free(spacing);

@@ -282,12 +282,11 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out);
 /* The same as a malloc'ed string; the caller frees it. */
 int gsn_case_to_yaml_string(const struct gsn_case *c, char **text);
 
-/* A stored case text as this version writes it: a kernel line without
- * window_cut (written before 2026-12-06, night, when the key was written
- * only if not 0 and 0 was the default) gets ", window_cut: 0". In place;
- * text must have room for GSN_CASE_YAML_UPGRADE_ROOM more characters. */
-enum { GSN_CASE_YAML_UPGRADE_ROOM = 16 };
-void gsn_case_yaml_upgrade(char *text);
+/* A stored case text (malloc'ed) as this version writes it: a kernel line
+ * without window_cut (written before 2026-12-06, night, when the key was
+ * written only if not 0 and 0 was the default) gets ", window_cut: 0";
+ * *text is reallocated (left as it was if that fails). */
+void gsn_case_yaml_upgrade(char **text);
 
 /* The case's name: its file name without the .yaml (or .yml) ending, e.g.
  * "slope_I" for geometries/slope_I.yaml; names the output folder and the

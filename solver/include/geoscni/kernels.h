@@ -108,6 +108,15 @@ int gsn_rk_create(int particle_count, const double *position,
 /* Frees; accepts NULL and nulls the handle. */
 void gsn_rk_destroy(struct gsn_rk **rk);
 
+/* rk with its whole window (window_cut 0): a shallow copy, sharing rk's
+ * arrays, for the searches that must not depend on the cut. */
+static inline struct gsn_rk gsn_rk_whole_window(const struct gsn_rk *rk)
+{
+    struct gsn_rk whole = *rk;
+    whole.window_cut = 0.0;
+    return whole;
+}
+
 /* Local spacing h_I from the nodal domains: the facet-area-weighted mean
  * distance to the particles that share a facet with I (DESIGN.md, "Support
  * size"). Degenerate facets of cospherical lattices have no area and no
