@@ -31,9 +31,10 @@ enum { SUM_PIECE = 1024 };
 enum { DISTORTION_COLUMNS = 6 };
 /* Points per batch of the material update. */
 enum { CHUNK = 128 };
-/* Doubles of per-thread work per batch: G, strain increment, old stress,
- * new H, mid-step determinant, old equivalent plastic strain. */
-enum { CHUNK_WORK = CHUNK * (9 + 6 + 6 + 9 + 1 + 1) };
+/* Doubles of per-thread work per batch (main_chunk): H, dH, new H, G in
+ * columns and by points, det F and det F_mid, strain, strain increment, old
+ * stress, old equivalent plastic strain. */
+enum { CHUNK_WORK = CHUNK * (9 * 5 + 3 + 6 + 6 + 1) };
 /* Lanczos steps of the stable-step estimate: at most LANCZOS_STEPS; it
  * stops when the largest Ritz value's residual bound is below
  * LANCZOS_TOLERANCE of it (the estimate is then that value plus the
@@ -629,19 +630,20 @@ static void elastic_stress(double bulk, double shear, const double eps[6],
         sigma[a] = 2.0 * shear * eps[a] + (a < 3 ? volumetric : 0.0);
 }
 
-/* P = J sigma F^-T w, from F (9) and sigma (Voigt). */
-static void point_piola(const double F[9], const double sigma[6], double w,
-                        double P[9])
+/* P = J sigma F^-T w = w sigma cof F (eq. (29)), from F (9) and sigma
+ * (Voigt): no division. */
+static inline void point_piola(const double F[9], const double sigma[6],
+                               double w, double P[9])
 {
-    double Finv[9], S[9];
-    double J = gsn_matrix_inverse(F, Finv);
+    double C[9], S[9];
+    gsn_matrix_cofactor(F, C);
     gsn_voigt_to_matrix(sigma, S);
+#pragma GCC unroll 9
     for (int i = 0; i < 3; ++i)
+#pragma GCC unroll 9
         for (int j = 0; j < 3; ++j)
-            P[3 * i + j] =
-                J * w *
-                (S[3 * i] * Finv[3 * j] + S[3 * i + 1] * Finv[3 * j + 1] +
-                 S[3 * i + 2] * Finv[3 * j + 2]);
+            P[3 * i + j] = w * (S[3 * i] * C[j] + S[3 * i + 1] * C[3 + j] +
+                                S[3 * i + 2] * C[6 + j]);
 }
 
 /* The P of main point p from its total stress sigma' - u I (explicit.h,
@@ -675,7 +677,7 @@ static void force_gradient(const struct gsn_explicit *e, const double H[9],
         F[a] = identity_entry(a) + (e->small_strain ? 0.0 : H[a]);
 }
 
-static double voigt_contract(const double a[6], const double b[6])
+static inline double voigt_contract(const double a[6], const double b[6])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] +
            2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
@@ -873,24 +875,30 @@ static inline void fused_row_scatter(const struct gsn_point_blocks *b, int r,
  * is left out on purpose: it softens every mode of the continuum alike, and
  * a fully damaged particle still needs the stabilization's stiffness not to
  * invert (docs/solver.md, "Stabilization"). */
-static double elastic_share(const double deps[6], double plastic_increment)
+static inline double elastic_share(const double deps[6],
+                                   double plastic_increment)
 {
-    double trace = (deps[0] + deps[1] + deps[2]) / 3.0, dev[6];
+    const double trace = (deps[0] + deps[1] + deps[2]) / 3.0;
+    double dev[6];
+#pragma GCC unroll 9
     for (int a = 0; a < 6; ++a)
         dev[a] = deps[a] - (a < 3 ? trace : 0.0);
-    double total = sqrt(2.0 / 3.0 * voigt_contract(dev, dev));
-    if (!(total > 0.0))
-        return 1.0;
-    double share = 1.0 - plastic_increment / total;
-    return share < 0.0 ? 0.0 : share > 1.0 ? 1.0 : share;
+    const double total = sqrt(2.0 / 3.0 * voigt_contract(dev, dev));
+    /* no branch (main_chunk's columns), and no division by 0 where the
+     * share is not taken */
+    double share = 1.0 - plastic_increment / (total > 0.0 ? total : 1.0);
+    share = share < 0.0 ? 0.0 : share > 1.0 ? 1.0 : share;
+    return total > 0.0 ? share : 1.0;
 }
 
 /* |E| = |F^T F - I| / 2 (Frobenius): the strain of F without its
  * rotation. */
-static double green_strain_norm(const double F[9])
+static inline double green_strain_norm(const double F[9])
 {
     double sum = 0.0;
+#pragma GCC unroll 9
     for (int i = 0; i < 3; ++i)
+#pragma GCC unroll 9
         for (int j = i; j < 3; ++j) {
             double c = F[i] * F[j] + F[3 + i] * F[3 + j] + F[6 + i] * F[6 + j];
             c -= i == j ? 1.0 : 0.0;
@@ -917,6 +925,79 @@ static void point_fail(struct gsn_explicit *e, int p)
     }
 }
 
+/* The kinematics of one nodal point, component c of its arrays at
+ * x[c * CHUNK] (the columns of a chunk, where the loop over points
+ * vectorizes): Hnew = H + dH, det F_{n+1} (F_{n+1} = I + Hnew) and its
+ * strain |E|, and on the mid-step configuration F_mid = I + H + dH/2 the
+ * incremental gradient G = dH F_mid^-1 with Jmid = det F_mid; small strain:
+ * G = sym dH, no rotation, the reference volume (Jmid = 1). */
+__attribute__((always_inline)) static inline void
+point_kinematics(int small_strain, const double *restrict H,
+                 const double *restrict dH, double *restrict Hnew,
+                 double *restrict G, double *restrict J1, double *restrict Jmid,
+                 double *restrict strain)
+{
+    double d[9], F1[9], Fmid[9];
+#pragma GCC unroll 9
+    for (int a = 0; a < 9; ++a) {
+        const double h = H[a * CHUNK];
+        d[a] = dH[a * CHUNK];
+        Hnew[a * CHUNK] = h + d[a];
+        F1[a] = identity_entry(a) + (h + d[a]);
+        Fmid[a] = identity_entry(a) + h + 0.5 * d[a];
+    }
+    *J1 = gsn_matrix_determinant(F1);
+    *strain = green_strain_norm(F1);
+    if (small_strain) {
+#pragma GCC unroll 9
+        for (int i = 0; i < 3; ++i)
+#pragma GCC unroll 9
+            for (int j = 0; j < 3; ++j)
+                G[(3 * i + j) * CHUNK] = 0.5 * (d[3 * i + j] + d[3 * j + i]);
+        *Jmid = 1.0;
+        return;
+    }
+    double Fmid_inv[9], g[9];
+    *Jmid = gsn_matrix_inverse(Fmid, Fmid_inv);
+    gsn_matrix_multiply(d, Fmid_inv, g);
+#pragma GCC unroll 9
+    for (int a = 0; a < 9; ++a)
+        G[a * CHUNK] = g[a];
+}
+
+/* The end of the step of one live nodal point, columns as
+ * point_kinematics: the elastic share of its strain increment deps, the
+ * work of the mean of its old and new total stress (the pore pressure u
+ * rises from u_old to u_new) over the mid-step volume Jmid w, and
+ * P = w (sigma - u_new I) cof F (eq. (29); F = I + large Hnew: large is 0
+ * for kinematics: small, the forces on the reference configuration). */
+__attribute__((always_inline)) static inline void
+point_end(double large, const double *restrict deps, const double *restrict old,
+          const double *restrict stress, const double *restrict Hnew,
+          double plastic_step, double u_old, double u_new, double Jmid,
+          double w, double *restrict share, double *restrict energy,
+          double *restrict P)
+{
+    double de[6], mean[6], sigma[6], F[9], Pp[9];
+#pragma GCC unroll 9
+    for (int a = 0; a < 6; ++a) {
+        de[a] = deps[a * CHUNK];
+        sigma[a] = stress[a * CHUNK] - (a < 3 ? u_new : 0.0);
+        mean[a] = 0.5 * (old[a * CHUNK] + stress[a * CHUNK]) -
+                  (a < 3 ? 0.5 * (u_old + u_new) : 0.0);
+    }
+    *share = elastic_share(de, plastic_step); /* 1 without plasticity */
+    /* Internal work sigma : d eps over the mid-step volume. */
+    *energy = voigt_contract(mean, de) * Jmid * w;
+#pragma GCC unroll 9
+    for (int a = 0; a < 9; ++a)
+        F[a] = identity_entry(a) + large * Hnew[a * CHUNK];
+    point_piola(F, sigma, w, Pp);
+#pragma GCC unroll 9
+    for (int a = 0; a < 9; ++a)
+        P[a * CHUNK] = Pp[a];
+}
+
 /* Nodal points [p0, p1) with their increments dH (9 each, from p0):
  * F_{n+1} = I + H + dH, the incremental gradient on the mid-step
  * configuration G = dH (I + H + dH/2)^-1, the objective update with the
@@ -926,50 +1007,51 @@ static void point_fail(struct gsn_explicit *e, int p)
  * that turns inside out fails when allow_failure is set, else the step
  * fails. distortion (DISTORTION_COLUMNS) gets the block's largest |E| of
  * F_{n+1}, its point, the extremes of det F_{n+1} over the live points,
- * the points that failed in this step and the first of them (-1). */
+ * the points that failed in this step and the first of them (-1). The
+ * arithmetic runs on columns of the chunk (point_kinematics, point_end);
+ * the decisions between them point by point. */
 static int main_chunk(struct gsn_explicit *e, int p0, int p1,
                       const double *dH_block, double *work, double *share,
                       double distortion[DISTORTION_COLUMNS])
 {
     const double *w = e->quadrature->point_weight;
-    double *G = work, *deps = G + 9 * CHUNK, *old = deps + 6 * CHUNK;
-    double *Hnew = old + 6 * CHUNK, *Jmid = Hnew + 9 * CHUNK;
-    double *old_plastic = Jmid + CHUNK;
+    const int n = p1 - p0, small = e->small_strain;
+    const double large = small ? 0.0 : 1.0;
+    const int plastic = e->plastic_offset >= 0;
+    const size_t ns = (size_t)e->state_size;
+    double *Hc = work, *dHc = Hc + 9 * CHUNK, *Hnew = dHc + 9 * CHUNK;
+    double *Gc = Hnew + 9 * CHUNK, *G = Gc + 9 * CHUNK;
+    double *J1 = G + 9 * CHUNK, *Jmid = J1 + CHUNK, *strain = Jmid + CHUNK;
+    double *deps = strain + CHUNK, *old = deps + 6 * CHUNK;
+    double *old_plastic = old + 6 * CHUNK;
+    /* after the update, the columns of H and dH hold these, and P those
+     * of G */
+    double *stress_c = Hc, *deps_c = Hc + 6 * CHUNK, *Pc = Gc;
+    double *plastic_step = Hc + 12 * CHUNK, *u_old = plastic_step + CHUNK;
+    double *u_new = u_old + CHUNK;
+    gsn_material_to_columns((size_t)n, 9, &e->displacement_gradient[9 * p0], 9,
+                            Hc, CHUNK);
+    gsn_material_to_columns((size_t)n, 9, dH_block, 9, dHc, CHUNK);
+    if (small) /* two loops: no branch inside either */
+#pragma omp simd
+        for (int b = 0; b < n; ++b)
+            point_kinematics(1, &Hc[b], &dHc[b], &Hnew[b], &Gc[b], &J1[b],
+                             &Jmid[b], &strain[b]);
+    else
+#pragma omp simd
+        for (int b = 0; b < n; ++b)
+            point_kinematics(0, &Hc[b], &dHc[b], &Hnew[b], &Gc[b], &J1[b],
+                             &Jmid[b], &strain[b]);
+    gsn_material_from_columns((size_t)n, 9, Gc, CHUNK, G, 9);
     int failed = 0;
     double strain_max = 0.0, jacobian_min = INFINITY, jacobian_max = 0.0;
     int strain_point = p0, newly_failed = 0, first_failed = -1;
     for (int p = p0; p < p1; ++p) {
-        int b = p - p0;
-        const double *H = &e->displacement_gradient[9 * p];
-        const double *dH = &dH_block[9 * b];
-        double F1[9];
-        for (int a = 0; a < 9; ++a) {
-            Hnew[9 * b + a] = H[a] + dH[a];
-            F1[a] = identity_entry(a) + Hnew[9 * b + a];
-        }
-        double J1 = gsn_matrix_determinant(F1);
-        int admissible;
-        if (e->point_dead[p]) {
-            admissible = 1;
-        } else if (e->small_strain) {
-            /* Small strain: G = sym dH, no rotation, the reference volume;
-             * no volume to invert, only a non-number fails. */
-            for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 3; ++j)
-                    G[9 * b + 3 * i + j] =
-                        0.5 * (dH[3 * i + j] + dH[3 * j + i]);
-            Jmid[b] = 1.0;
-            admissible = isfinite(J1);
-        } else {
-            double Fmid[9], Fmid_inv[9];
-            for (int a = 0; a < 9; ++a)
-                Fmid[a] = identity_entry(a) + H[a] + 0.5 * dH[a];
-            Jmid[b] = gsn_matrix_inverse(Fmid, Fmid_inv);
-            admissible = J1 > 0.0 && Jmid[b] > 0.0 && isfinite(J1);
-            if (admissible)
-                gsn_matrix_multiply(dH, Fmid_inv, &G[9 * b]);
-        }
-        if (!admissible && e->allow_failure && isfinite(J1)) {
+        const int b = p - p0;
+        const int admissible =
+            e->point_dead[p] ||
+            (isfinite(J1[b]) && (small || (J1[b] > 0.0 && Jmid[b] > 0.0)));
+        if (!admissible && e->allow_failure && isfinite(J1[b])) {
             point_fail(e, p);
             if (newly_failed++ == 0)
                 first_failed = p;
@@ -982,18 +1064,17 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
             memset(&G[9 * b], 0, 9 * sizeof(double));
             Jmid[b] = 1.0;
         } else if (e->track_distortion) {
-            double strain = green_strain_norm(F1);
-            if (strain > strain_max) {
-                strain_max = strain;
+            if (strain[b] > strain_max) {
+                strain_max = strain[b];
                 strain_point = p;
             }
-            jacobian_min = gsn_min(jacobian_min, J1);
-            jacobian_max = gsn_max(jacobian_max, J1);
+            jacobian_min = gsn_min(jacobian_min, J1[b]);
+            jacobian_max = gsn_max(jacobian_max, J1[b]);
         }
-        memcpy(&old[6 * b], &e->stress[6 * p], 6 * sizeof(double));
-        if (e->plastic_offset >= 0)
-            old_plastic[b] =
-                e->state[(size_t)e->state_size * p + e->plastic_offset];
+        for (int a = 0; a < 6; ++a)
+            old[a * CHUNK + b] = e->stress[6 * p + a];
+        if (plastic)
+            old_plastic[b] = e->state[ns * p + e->plastic_offset];
     }
     distortion[0] = strain_max;
     distortion[1] = jacobian_min;
@@ -1010,44 +1091,43 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
             ;
         rc = gsn_stress_update(e->materials->model[kind[a]], (size_t)(z - a),
                                &G[9 * (a - p0)], &e->stress[6 * a],
-                               &e->state[(size_t)e->state_size * a],
-                               &deps[6 * (a - p0)]);
+                               &e->state[ns * a], &deps[6 * (a - p0)]);
     }
     if (rc != GSN_OK) {
         for (int p = p0; p < p1; ++p)
             e->point_failed[p] = 1;
         return rc;
     }
+    gsn_material_to_columns((size_t)n, 6, &e->stress[6 * p0], 6, stress_c,
+                            CHUNK);
+    gsn_material_to_columns((size_t)n, 6, deps, 6, deps_c, CHUNK);
     for (int p = p0; p < p1; ++p) {
-        int b = p - p0;
-        if (e->point_dead[p]) {
-            memset(&e->stress[6 * p], 0, 6 * sizeof(double));
-            memset(&e->piola[9 * p], 0, 9 * sizeof(double));
-            e->point_energy[p] = 0.0;
-            share[b] = 0.0;
+        const int b = p - p0;
+        plastic_step[b] =
+            plastic ? e->state[ns * p + e->plastic_offset] - old_plastic[b]
+                    : 0.0;
+        /* the total stress; u rises with the load factor */
+        const double u = e->pore_pressure ? e->pore_pressure[p] : 0.0;
+        u_old[b] = e->pore_factor * u;
+        u_new[b] = e->load_factor * u;
+    }
+#pragma omp simd
+    for (int b = 0; b < n; ++b)
+        point_end(large, &deps_c[b], &old[b], &stress_c[b], &Hnew[b],
+                  plastic_step[b], u_old[b], u_new[b], Jmid[b], w[p0 + b],
+                  &share[b], &e->point_energy[p0 + b], &Pc[b]);
+    gsn_material_from_columns((size_t)n, 9, Pc, CHUNK, &e->piola[9 * p0], 9);
+    for (int p = p0; p < p1; ++p) {
+        const int b = p - p0;
+        if (!e->point_dead[p]) {
+            for (int a = 0; a < 9; ++a)
+                e->displacement_gradient[9 * p + a] = Hnew[a * CHUNK + b];
             continue;
         }
-        double mean[6], F1[9];
-        for (int a = 0; a < 6; ++a)
-            mean[a] = 0.5 * (old[6 * b + a] + e->stress[6 * p + a]);
-        /* the total stress's work; u rises with the load factor */
-        for (int a = 0; a < 3 && e->pore_pressure; ++a)
-            mean[a] -=
-                0.5 * (e->pore_factor + e->load_factor) * e->pore_pressure[p];
-        share[b] =
-            e->plastic_offset < 0
-                ? 1.0
-                : elastic_share(
-                      &deps[6 * b],
-                      e->state[(size_t)e->state_size * p + e->plastic_offset] -
-                          old_plastic[b]);
-        /* Internal work sigma : d eps over the mid-step volume. */
-        e->point_energy[p] =
-            voigt_contract(mean, &deps[6 * b]) * Jmid[b] * w[p];
-        memcpy(&e->displacement_gradient[9 * p], &Hnew[9 * b],
-               9 * sizeof(double));
-        force_gradient(e, &Hnew[9 * b], F1);
-        total_piola(e, p, F1, w[p], &e->piola[9 * p]);
+        memset(&e->stress[6 * p], 0, 6 * sizeof(double));
+        memset(&e->piola[9 * p], 0, 9 * sizeof(double));
+        e->point_energy[p] = 0.0;
+        share[b] = 0.0;
     }
     return GSN_OK;
 }

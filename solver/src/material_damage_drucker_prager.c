@@ -63,6 +63,7 @@ struct ddp {
     double length;      /* nonlocal radius L, m; 0: the local law */
     int has_plasticity; /* eq. (8) */
     double alpha, R;    /* yield function, -, Pa */
+    double apex;        /* R / (3 alpha): the cone's apex, Pa; 0 if alpha = 0 */
     double beta;        /* dilatancy of the potential, - */
 };
 
@@ -110,6 +111,7 @@ static int ddp_create(const struct gsn_material *p, void **context)
     m->alpha = p->dp_alpha;
     m->R = p->dp_R;
     m->beta = p->dp_dilatancy;
+    m->apex = m->alpha > 0.0 ? m->R / (3.0 * m->alpha) : 0.0;
     *context = m;
     return GSN_OK;
 }
@@ -130,97 +132,182 @@ static int ddp_initialize(const void *context, size_t count,
     return GSN_OK;
 }
 
-/* Seed paper eq. (7). */
+/* Seed paper eq. (7), without branches (the loop over points below is
+ * vectorized): 0 up to e0, 1 from ef. Every case is computed for every
+ * point, so no division may trap where its case is not taken: the
+ * denominators are kept away from 0 there (e0 > 0). */
 static inline double ddp_damage(const struct ddp *m, double e_t)
 {
-    if (e_t <= m->e0)
-        return 0.0;
-    if (e_t >= m->ef)
-        return 1.0;
-    return m->ef * (e_t - m->e0) / (e_t * (m->ef - m->e0));
+    const double above = e_t > m->e0 ? e_t : m->e0;
+    const double zeta = m->ef * (e_t - m->e0) / (above * (m->ef - m->e0));
+    return e_t <= m->e0 ? 0.0 : e_t >= m->ef ? 1.0 : zeta;
 }
 
-/* Plastic corrector on the effective stress sb (Voigt, in place); returns
- * the norm of the deviatoric plastic strain increment. */
-static inline double ddp_return(const struct ddp *m, double sb[6])
+/* Plastic corrector on the effective stress sb (6 components at
+ * sb[a * s], in place); returns the norm of the deviatoric plastic strain
+ * increment. Every case is computed and one selected, so that the loop over
+ * points vectorizes; the selected one has the bits of the branch it
+ * stands for. */
+static inline double ddp_return(const struct ddp *m, double *restrict sb,
+                                size_t s, int cone_only)
 {
-    const double tr = sb[0] + sb[1] + sb[2];
+    const double tr = sb[0] + sb[s] + sb[2 * s];
     const double mean = tr / 3.0;
-    double s[6] = {sb[0] - mean, sb[1] - mean, sb[2] - mean,
-                   sb[3],        sb[4],        sb[5]};
-    const double ns = gsn_voigt_norm(s);
+    double dev[6];
+    for (int a = 0; a < 6; ++a)
+        dev[a] = sb[a * s] - (a < 3 ? mean : 0.0);
+    const double ns = gsn_voigt_norm(dev);
     const double f = ns + m->alpha * tr - m->R; /* eq. (8), tension + */
-    if (!(f > 0.0))
-        return 0.0;
     const double two_mu = 2.0 * m->mu;
     const double dl = f / (two_mu + 9.0 * m->K * m->alpha * m->beta);
-    if (two_mu * dl < ns || m->alpha == 0.0) {
-        /* Return to the cone. */
-        double scale = 1.0 - two_mu * dl / ns;
-        if (scale < 0.0)
-            scale = 0.0;
-        const double mean_new = mean - 3.0 * m->K * m->beta * dl;
-        for (int a = 0; a < 3; ++a)
-            sb[a] = scale * s[a] + mean_new;
-        for (int a = 3; a < 6; ++a)
-            sb[a] = scale * s[a];
-        return (1.0 - scale) * ns / two_mu;
+    /* Return to the cone, or to the apex where the cone return would
+     * overshoot the axis. */
+    const int flows = f > 0.0;
+    const int cone = cone_only || two_mu * dl < ns; /* alpha = 0: no apex */
+    /* ns > 0 where the cone is taken (f > 0 with ns = 0 needs alpha > 0
+     * and then 2 mu dl > 0 = ns) */
+    double scale = 1.0 - two_mu * dl / (ns > 0.0 ? ns : 1.0);
+    scale = scale < 0.0 ? 0.0 : scale;
+    const double mean_new = mean - 3.0 * m->K * m->beta * dl;
+    const double apex = m->apex;
+    for (int a = 0; a < 6; ++a) {
+        const double to_cone = scale * dev[a] + (a < 3 ? mean_new : 0.0);
+        const double to_apex = a < 3 ? apex : 0.0;
+        sb[a * s] = !flows ? sb[a * s] : cone ? to_cone : to_apex;
     }
-    /* The cone return would overshoot the axis: return to the apex. */
-    const double apex = m->R / (3.0 * m->alpha);
-    for (int a = 0; a < 3; ++a)
-        sb[a] = apex;
-    for (int a = 3; a < 6; ++a)
-        sb[a] = 0.0;
-    return ns / two_mu;
+    return !flows ? 0.0 : cone ? (1.0 - scale) * ns / two_mu : ns / two_mu;
 }
 
+/* Points per block of columns. */
+#define DDP_BLOCK ((size_t)GSN_MATERIAL_COLUMN)
+
+/* Column offsets of a block's working copy (DDP_BLOCK doubles each). */
+enum {
+    DDP_COLUMN_STRAIN_INCREMENT = 0,
+    DDP_COLUMN_STATE = 6,
+    DDP_COLUMN_STRESS = 6 + DDP_STATE_SIZE,
+    DDP_COLUMNS = 12 + DDP_STATE_SIZE
+};
+
+/* What of the model a point goes through: the variants of ddp_point, each
+ * with its own loop over the points, since the vectorizer cannot select by
+ * a flag that is the same for every point. */
+enum {
+    DDP_LOCAL_DAMAGE = 1,    /* eq. (7) of e_t */
+    DDP_NONLOCAL_DAMAGE = 2, /* eq. (7) of e_t averaged (nonlocal.h) */
+    DDP_PLASTIC = 4,         /* eq. (8) */
+    DDP_CONE_ONLY = 8        /* alpha = 0: a cylinder, no apex */
+};
+
+static int ddp_variant(const struct ddp *m)
+{
+    int variant = 0;
+    if (m->has_damage)
+        variant |= m->length > 0.0 ? DDP_NONLOCAL_DAMAGE : DDP_LOCAL_DAMAGE;
+    if (m->has_plasticity)
+        variant |= DDP_PLASTIC | (m->alpha == 0.0 ? DDP_CONE_ONLY : 0);
+    return variant;
+}
+
+/* One point of ddp_update; component a of its arrays at x[a * s]. */
+__attribute__((always_inline)) static inline void
+ddp_point(const struct ddp *m, const double *restrict de, double *restrict q,
+          double *restrict stress, size_t s, const int variant)
+{
+    const double K = m->K, two_mu = 2.0 * m->mu;
+    double *sb = q + DDP_EFFECTIVE_STRESS * s;
+
+    /* Elastic-damage predictor (Fig. 3; eqs. (6)-(7)). */
+    double de_norm2 = de[0] * de[0] + de[s] * de[s] + de[2 * s] * de[2 * s];
+    de_norm2 += 2.0 * (de[3 * s] * de[3 * s] + de[4 * s] * de[4 * s] +
+                       de[5 * s] * de[5 * s]);
+    const double e_t = q[DDP_EQUIVALENT_STRAIN * s] + sqrt(de_norm2);
+    q[DDP_EQUIVALENT_STRAIN * s] = e_t;
+    double zeta = 0.0;
+    if (variant & (DDP_LOCAL_DAMAGE | DDP_NONLOCAL_DAMAGE)) {
+        zeta = ddp_damage(m, variant & DDP_NONLOCAL_DAMAGE
+                                 ? q[DDP_NONLOCAL_STRAIN * s]
+                                 : e_t);
+        zeta = zeta < q[DDP_DAMAGE * s] ? q[DDP_DAMAGE * s] : zeta;
+    }
+    q[DDP_DAMAGE * s] = zeta;
+    const double dv = de[0] + de[s] + de[2 * s];
+    const double dp = K * dv - two_mu * dv / 3.0;
+    for (int a = 0; a < 3; ++a)
+        sb[a * s] += dp + two_mu * de[a * s];
+    for (int a = 3; a < 6; ++a)
+        sb[a * s] += two_mu * de[a * s];
+
+    /* Plastic corrector on the effective stress (eq. (8)). */
+    if (variant & DDP_PLASTIC)
+        q[DDP_EQUIVALENT_PLASTIC_STRAIN * s] +=
+            sqrt(2.0 / 3.0) * ddp_return(m, sb, s, variant & DDP_CONE_ONLY);
+
+    /* Nominal stress, eq. (6). */
+    for (int a = 0; a < 6; ++a)
+        stress[a * s] = (1.0 - zeta) * sb[a * s];
+}
+
+/* ddp_point over n points in columns (DDP_BLOCK a column). */
+__attribute__((always_inline)) static inline void
+ddp_columns(const struct ddp *m, size_t n, const double *restrict de,
+            double *restrict q, double *restrict stress, const int variant)
+{
+#pragma omp simd
+    for (size_t i = 0; i < n; ++i)
+        ddp_point(m, &de[i], &q[i], &stress[i], DDP_BLOCK, variant);
+}
+
+/* The points go through ddp_point in blocks of columns (material.h), the
+ * loop over a block's points vectorized; a non-finite stress is reported
+ * after its block, naming the first such point. */
 static int ddp_update(const void *context, size_t count,
                       const double *restrict strain_increment,
                       double *restrict stress, double *restrict state)
 {
-    const struct ddp *m = context;
-    const double K = m->K, two_mu = 2.0 * m->mu;
-    const double sqrt_two_thirds = sqrt(2.0 / 3.0);
-    for (size_t i = 0; i < count; ++i) {
-        const double *de = strain_increment + 6 * i;
-        double *q = state + DDP_STATE_SIZE * i;
-        double *sb = q + DDP_EFFECTIVE_STRESS;
-
-        /* Elastic-damage predictor (Fig. 3; eqs. (6)-(7)). */
-        const double e_t = q[DDP_EQUIVALENT_STRAIN] + gsn_voigt_norm(de);
-        q[DDP_EQUIVALENT_STRAIN] = e_t;
-        double zeta = 0.0;
-        if (m->has_damage) {
-            /* with damage.length, e_t averaged over it (nonlocal.h) */
-            zeta =
-                ddp_damage(m, m->length > 0.0 ? q[DDP_NONLOCAL_STRAIN] : e_t);
-            if (zeta < q[DDP_DAMAGE])
-                zeta = q[DDP_DAMAGE];
+    /* a copy that the stores of the loop below cannot reach */
+    const struct ddp model = *(const struct ddp *)context;
+    const int variant = ddp_variant(&model);
+    double x[DDP_COLUMNS * DDP_BLOCK];
+    double *de = &x[DDP_COLUMN_STRAIN_INCREMENT * DDP_BLOCK];
+    double *q = &x[DDP_COLUMN_STATE * DDP_BLOCK];
+    double *s = &x[DDP_COLUMN_STRESS * DDP_BLOCK];
+    for (size_t first = 0; first < count; first += DDP_BLOCK) {
+        const size_t n = count - first < DDP_BLOCK ? count - first : DDP_BLOCK;
+        gsn_material_to_columns(n, 6, strain_increment + 6 * first, 6, de,
+                                DDP_BLOCK);
+        gsn_material_to_columns(n, DDP_STATE_SIZE,
+                                state + DDP_STATE_SIZE * first, DDP_STATE_SIZE,
+                                q, DDP_BLOCK);
+        switch (variant) { /* every variant ddp_variant makes */
+#define DDP_CASE(v)                                                            \
+    case v:                                                                    \
+        ddp_columns(&model, n, de, q, s, v);                                   \
+        break
+            DDP_CASE(0);
+            DDP_CASE(DDP_LOCAL_DAMAGE);
+            DDP_CASE(DDP_NONLOCAL_DAMAGE);
+            DDP_CASE(DDP_PLASTIC);
+            DDP_CASE(DDP_PLASTIC | DDP_CONE_ONLY);
+            DDP_CASE(DDP_LOCAL_DAMAGE | DDP_PLASTIC);
+            DDP_CASE(DDP_LOCAL_DAMAGE | DDP_PLASTIC | DDP_CONE_ONLY);
+            DDP_CASE(DDP_NONLOCAL_DAMAGE | DDP_PLASTIC);
+            DDP_CASE(DDP_NONLOCAL_DAMAGE | DDP_PLASTIC | DDP_CONE_ONLY);
+#undef DDP_CASE
         }
-        q[DDP_DAMAGE] = zeta;
-        const double dv = de[0] + de[1] + de[2];
-        const double dp = K * dv - two_mu * dv / 3.0;
-        for (int a = 0; a < 3; ++a)
-            sb[a] += dp + two_mu * de[a];
-        for (int a = 3; a < 6; ++a)
-            sb[a] += two_mu * de[a];
-
-        /* Plastic corrector on the effective stress (eq. (8)). */
-        if (m->has_plasticity)
-            q[DDP_EQUIVALENT_PLASTIC_STRAIN] +=
-                sqrt_two_thirds * ddp_return(m, sb);
-
-        /* Nominal stress, eq. (6). */
-        double *s = stress + 6 * i;
-        for (int a = 0; a < 6; ++a)
-            s[a] = (1.0 - zeta) * sb[a];
-        if (!isfinite(s[0] + s[1] + s[2] + s[3] + s[4] + s[5]))
-            return gsn_error_raise(
-                GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
-                "damage_drucker_prager: non-finite stress at point %zu of "
-                "the batch (strain increment %g %g %g %g %g %g)",
-                i, de[0], de[1], de[2], de[3], de[4], de[5]);
+        gsn_material_from_columns(n, DDP_STATE_SIZE, q, DDP_BLOCK,
+                                  state + DDP_STATE_SIZE * first,
+                                  DDP_STATE_SIZE);
+        gsn_material_from_columns(n, 6, s, DDP_BLOCK, stress + 6 * first, 6);
+        for (size_t i = first; i < first + n; ++i) {
+            const double *t = stress + 6 * i, *d = strain_increment + 6 * i;
+            if (!isfinite(t[0] + t[1] + t[2] + t[3] + t[4] + t[5]))
+                return gsn_error_raise(
+                    GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
+                    "damage_drucker_prager: non-finite stress at point %zu "
+                    "of the batch (strain increment %g %g %g %g %g %g)",
+                    i, d[0], d[1], d[2], d[3], d[4], d[5]);
+        }
     }
     return GSN_OK;
 }

@@ -39,7 +39,11 @@ int main(void)
     regmatch_t match[4];
     int found = regexec(&pattern, message, 4, match, 0) == 0;
     TEST_TRUE(found);
-    TEST_TRUE(strstr(message, "det F") != NULL);
+    /* either way of breaking down the header names; which comes first
+     * depends on round-off (the last bits of P moved it from det F at
+     * t = 0.65 s to the energy check at 0.58 s, 2026-12-07) */
+    TEST_TRUE(strstr(message, "det F") != NULL ||
+              strstr(message, "energy is not conserved") != NULL);
     double t_fail = found ? strtod(message + match[2].rm_so, NULL) : -1.0;
     long step = found ? strtol(message + match[1].rm_so, NULL, 10) : -1;
     regfree(&pattern);

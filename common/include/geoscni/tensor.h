@@ -112,6 +112,20 @@ static inline double gsn_matrix_inverse(const double m[9], double inverse[9])
     return det;
 }
 
+/* cof m = det(m) m^-T, by cofactors (no division: defined for any m). */
+static inline void gsn_matrix_cofactor(const double m[9], double c[9])
+{
+    c[0] = m[4] * m[8] - m[5] * m[7];
+    c[1] = m[5] * m[6] - m[3] * m[8];
+    c[2] = m[3] * m[7] - m[4] * m[6];
+    c[3] = m[2] * m[7] - m[1] * m[8];
+    c[4] = m[0] * m[8] - m[2] * m[6];
+    c[5] = m[1] * m[6] - m[0] * m[7];
+    c[6] = m[1] * m[5] - m[2] * m[4];
+    c[7] = m[2] * m[3] - m[0] * m[5];
+    c[8] = m[0] * m[4] - m[1] * m[3];
+}
+
 /* c = a b for 3x3 row-major matrices (c must not alias a or b). */
 static inline void gsn_matrix_multiply(const double a[9], const double b[9],
                                        double c[9])
