@@ -1637,7 +1637,8 @@ int gsn_explicit_update_stress(struct gsn_explicit *e)
 }
 
 /* a_{n+1} = M^-1 (f_ext - f_int) (eq. (32)), with the local damping on
- * free components (explicit.h); the constraints correct it after. */
+ * free components (explicit.h); the constraints correct it after. The
+ * works over the step read its increments d_{n+1} - d_n (e->increment). */
 static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
                               struct gsn_step_sums *sums)
 {
@@ -1648,10 +1649,9 @@ static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
             int at = 3 * i + k;
             double f = net_force(e, at, e->release_next);
             if (e->release_force)
-                sums->released +=
-                    0.5 * (e->release_factor + e->release_next) *
-                    e->release_force[at] *
-                    (e->displacement[at] - e->previous_displacement[at]);
+                sums->released += 0.5 * (e->release_factor + e->release_next) *
+                                  e->release_force[at] *
+                                  e->increment[4 * (size_t)i + (size_t)k];
             if (e->damping_local > 0.0) {
                 double damping = 0.0;
                 if (!(e->constrained[i] & (1 << k))) {
@@ -1664,9 +1664,8 @@ static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
                               : v_half < 0.0 ? e->damping_local * net
                                              : 0.0;
                 }
-                sums->dissipated -=
-                    0.5 * (e->damping_force[at] + damping) *
-                    (e->displacement[at] - e->previous_displacement[at]);
+                sums->dissipated -= 0.5 * (e->damping_force[at] + damping) *
+                                    e->increment[4 * (size_t)i + (size_t)k];
                 e->damping_force[at] = damping;
                 f += damping;
             }
@@ -1701,9 +1700,8 @@ static void reactions_and_energies(struct gsn_explicit *e, int i0, int i1,
         for (int k = 0; k < 3; ++k) {
             int at = 3 * i + k;
             double total = external_force(e, at);
-            sums->external +=
-                0.5 * (e->previous_external[at] + total) *
-                (e->displacement[at] - e->previous_displacement[at]);
+            sums->external += 0.5 * (e->previous_external[at] + total) *
+                              e->increment[4 * (size_t)i + (size_t)k];
             e->previous_external[at] = total;
             sums->kinetic +=
                 0.5 * e->mass[i] * e->velocity[at] * e->velocity[at];
