@@ -301,6 +301,10 @@ static int mesh_read_tetrahedra(const struct gsn_case *c, struct mesh *m,
                                 size_t **element_tags)
 {
     size_t *elements = NULL, element_count = 0, *nodes = NULL, node_count = 0;
+    size_t *tags = NULL, tag_count = 0;
+    double *coord = NULL, *parametric = NULL;
+    size_t coord_n = 0, parametric_n = 0;
+    int *index = NULL;
     int ierr = 0, rc = GSN_OK;
     gmshModelMeshGetElementsByType(GMSH_TETRAHEDRON, &elements, &element_count,
                                    &nodes, &node_count, -1, 0, 1, &ierr);
@@ -308,9 +312,6 @@ static int mesh_read_tetrahedra(const struct gsn_case *c, struct mesh *m,
     GSN_CHECK_GOTO(ierr == 0, rc, GSN_ERR_LIBRARY, done,
                    "cannot read the tetrahedra");
     size_t nt = node_count / 4;
-    size_t *tags = NULL, tag_count = 0;
-    double *coord = NULL, *parametric = NULL;
-    size_t coord_n = 0, parametric_n = 0;
     GSN_CHECK_GOTO(nt > 0, rc, GSN_ERR_INPUT, done,
                    "%s:%d: gmsh made no tetrahedra in %s", c->path,
                    c->geometry_line, c->geometry);
@@ -323,7 +324,7 @@ static int mesh_read_tetrahedra(const struct gsn_case *c, struct mesh *m,
     size_t limit = 0;
     for (size_t i = 0; i < tag_count; ++i)
         limit = tags[i] + 1 > limit ? tags[i] + 1 : limit;
-    int *index = malloc(sizeof(int) * (limit + 1));
+    index = malloc(sizeof(int) * (limit + 1));
     GSN_CHECK_GOTO(index != NULL, rc, GSN_ERR_MEMORY, done,
                    "cannot allocate %zu node tags", limit);
     for (size_t i = 0; i <= limit; ++i)
@@ -351,7 +352,9 @@ static int mesh_read_tetrahedra(const struct gsn_case *c, struct mesh *m,
         m->tetrahedra[t] = index[nodes[t]];
     *index_of_tag = index;
     *tag_limit = limit;
+    index = NULL;
 done:
+    free(index); /* kept only when all went well */
     gmshFree(nodes);
     gmshFree(tags);
     gmshFree(coord);
