@@ -17,6 +17,11 @@
 # cut"): one value, or a list to compare, each with its own loading run,
 # whose runs alternate (C1, C2, ..., then again) so that the host's drift
 # falls on all alike; the medians of each and their ratios to the first's.
+# BUILDS="B1 B2 ..." compares builds (folders under the repository, or
+# absolute) the same way: their runs alternate on the same model and, with
+# LOADED, restart from the same state (loaded by the first build); with
+# WINDOW_CUT, every build runs every cut. BUILD_DIR then only names the
+# folder whose stream program measures STREAM.
 # UPDATE_EVERY=K adds a reference-configuration update every K steps (issue
 # 15, point 4): the rate then includes them, and each run's line their count
 # and share of the solve.
@@ -29,8 +34,8 @@
 # the costs they give; copy the first run's with KEEP_MODEL=PATH).
 # Usage: bench/solver_bench.sh [BUILD_DIR] [RUNS] [STEPS] [CASE] [INTEGRATION]
 #        (default build, 3, 300, geometries/slope_I.yaml, the case's)
-#        THREADS="1 2" (default), LOADED, WINDOW_CUT, UPDATE_EVERY, MODEL and
-#        KEEP_MODEL (unset) in the environment
+#        THREADS="1 2" (default), LOADED, WINDOW_CUT, BUILDS, UPDATE_EVERY,
+#        MODEL and KEEP_MODEL (unset) in the environment
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-build}
@@ -39,8 +44,18 @@ steps=${3:-300}
 case_file=${4:-$root/geometries/slope_I.yaml}
 integration=${5:-}
 thread_counts=${THREADS:-1 2}
-geoscni=$root/$build/bin/geoscni
-[ -x "$geoscni" ] || { echo "no $geoscni: build first" >&2; exit 2; }
+# the geoscni of build folder $1 (under the repository, or absolute)
+geoscni_of() {
+    case $1 in
+    /*) echo "$1/bin/geoscni" ;;
+    *) echo "$root/$1/bin/geoscni" ;;
+    esac
+}
+builds=${BUILDS:-$build}
+for b in $builds; do
+    [ -x "$(geoscni_of "$b")" ] || { echo "no $(geoscni_of "$b"): build first" >&2; exit 2; }
+done
+geoscni=$(geoscni_of "${builds%% *}")
 work=$(mktemp -d /tmp/geoscni_solver_bench.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 loaded=${LOADED:-}
@@ -74,8 +89,13 @@ else
 fi
 [ -n "${KEEP_MODEL:-}" ] && cp "$work/out/model.h5" "$KEEP_MODEL"
 mv "$work/out" "$work/model"
-# the variants: the case as it is, or one case a window cut
+# the variants: the case as it is, or one case a window cut, each with
+# every build (BUILD@CUT, the first build's first)
 cuts=${WINDOW_CUT:--}
+variants=
+for cut in $cuts; do
+    for b in $builds; do variants="$variants $b@$cut"; done
+done
 for cut in $cuts; do
     cp "$work/case.yaml" "$work/case.$cut.yaml"
     [ "$cut" = - ] ||
@@ -95,26 +115,33 @@ if [ -n "$loaded" ]; then
     restart=--restart
 fi
 echo "geoscni solve $(basename "$case_file") ($(grep '^integration:' "$work/case.yaml" | sed 's/ *#.*//')), $steps steps, $runs runs per thread count ($(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg))"
+# a variant's name in file names, and in the lines printed
+key() { echo "$1" | tr '/@' '__'; }
+label() {
+    [ "$builds" = "$build" ] || printf ', %s' "${1%@*}"
+    [ "${1##*@}" = - ] || printf ', cut %s' "${1##*@}"
+}
 for threads in $thread_counts; do
     i=1
-    for cut in $cuts; do : >"$work/rates.$threads.$cut"; done
+    for v in $variants; do : >"$work/rates.$threads.$(key "$v")"; done
     while [ "$i" -le "$runs" ]; do
-        for cut in $cuts; do
+        for v in $variants; do
+            cut=${v##*@}
             rm -rf "$work/out"
             cp -r "$work/start.$cut" "$work/out"
-            OMP_WAIT_POLICY=passive /usr/bin/time -f "peak %M KB" "$geoscni" solve "$work/case.$cut.yaml" -o "$work/out" -j "$threads" \
+            OMP_WAIT_POLICY=passive /usr/bin/time -f "peak %M KB" "$(geoscni_of "${v%@*}")" solve "$work/case.$cut.yaml" -o "$work/out" -j "$threads" \
                 $restart >"$work/log" 2>&1 || {
-                echo "  $threads thread(s), run $i failed: $(grep 'error:' "$work/log")" >&2
+                echo "  $threads thread(s)$(label "$v"), run $i failed: $(grep 'error:' "$work/log")" >&2
                 exit 1
             }
             rate=$(tr '\r' '\n' <"$work/log" | grep 'took' | sed 's/.*  \([0-9.e+]*\) particle-steps.*/\1/')
             particles=$(grep '^solver: [0-9]* particles' "$work/log" | sed 's/solver: \([0-9]*\) particles.*/\1/')
             phases=$(grep '^step time:' "$work/log" | sed 's/^step time: //')
             updates=$(grep '^reference updates:' "$work/log" | sed 's/^reference updates: \([0-9]*\) .*, \([0-9.e+-]* s\), \([0-9.]*%\) of the solve.*/\1 updates, \2, \3 of the solve/')
-            echo "  $threads thread(s)$([ "$cut" = - ] || echo ", cut $cut"), run $i: $rate particle-steps/s ($particles particles)${phases:+; $phases}${updates:+; $updates}"
-            echo "$rate" >>"$work/rates.$threads.$cut"
-            sed -n 's/^step data: \([0-9.]*\) kB.*/\1/p' "$work/log" >"$work/bytes.$cut"
-            sed -n 's/^peak \([0-9]*\) KB$/\1/p' "$work/log" >"$work/peak.$cut"
+            echo "  $threads thread(s)$(label "$v"), run $i: $rate particle-steps/s ($particles particles)${phases:+; $phases}${updates:+; $updates}"
+            echo "$rate" >>"$work/rates.$threads.$(key "$v")"
+            sed -n 's/^step data: \([0-9.]*\) kB.*/\1/p' "$work/log" >"$work/bytes.$(key "$v")"
+            sed -n 's/^peak \([0-9]*\) KB$/\1/p' "$work/log" >"$work/peak.$(key "$v")"
         done
         i=$((i + 1))
     done
@@ -128,16 +155,16 @@ for threads in $thread_counts; do
     triad=
     [ -x "$stream" ] && triad=$("$stream" "$threads" | sed -n 's/.*: \([0-9.]*\) GB\/s$/\1/p')
     first=
-    for cut in $cuts; do
-        median=$(sort -g "$work/rates.$threads.$cut" | sed -n "$(((runs + 1) / 2))p")
-        one=$(sort -g "$work/rates.1.$cut" 2>/dev/null | sed -n "$(((runs + 1) / 2))p")
+    for v in $variants; do
+        k=$(key "$v")
+        median=$(sort -g "$work/rates.$threads.$k" | sed -n "$(((runs + 1) / 2))p")
+        one=$(sort -g "$work/rates.1.$k" 2>/dev/null | sed -n "$(((runs + 1) / 2))p")
         [ -n "$first" ] || first=$median
-        awk -v t="$threads" -v m="$median" -v one="$one" -v kb="$(cat "$work/bytes.$cut")" \
-            -v s="${triad:-0}" -v peak="$(cat "$work/peak.$cut")" -v n="$particles" \
-            -v cut="$cut" -v first="$first" 'BEGIN {
-            line = sprintf("median, %d thread(s)%s: %.3g particle-steps/s", t,
-                cut == "-" ? "" : ", cut " cut, m)
-            if (cut != "-" && m != first)
+        awk -v t="$threads" -v m="$median" -v one="$one" -v kb="$(cat "$work/bytes.$k")" \
+            -v s="${triad:-0}" -v peak="$(cat "$work/peak.$k")" -v n="$particles" \
+            -v name="$(label "$v")" -v first="$first" 'BEGIN {
+            line = sprintf("median, %d thread(s)%s: %.3g particle-steps/s", t, name, m)
+            if (name != "" && m != first)
                 line = line sprintf(" (%.2f x the first'"'"'s)", m / first)
             if (one != "" && t > 1)
                 line = line sprintf(" (parallel efficiency %.2f)", m / (t * one))
