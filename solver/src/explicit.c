@@ -646,35 +646,27 @@ static inline void point_piola(const double F[9], const double sigma[6],
                                 S[3 * i + 2] * C[6 + j]);
 }
 
-/* The P of main point p from its total stress sigma' - u I (explicit.h,
- * pore_pressure). */
-static void total_piola(const struct gsn_explicit *e, int p, const double F[9],
-                        double w, double P[9])
-{
-    const double *stress = &e->stress[6 * (size_t)p];
-    if (!e->pore_pressure) {
-        point_piola(F, stress, w, P);
-        return;
-    }
-    double sigma[6];
-    for (int a = 0; a < 6; ++a)
-        sigma[a] =
-            stress[a] - (a < 3 ? e->load_factor * e->pore_pressure[p] : 0.0);
-    point_piola(F, sigma, w, P);
-}
-
 static inline double identity_entry(int a)
 {
     return a % 4 == 0 ? 1.0 : 0.0;
 }
 
-/* The F of the internal force (eq. 29): I + H, or I for kinematics: small
- * (forces on the reference configuration). */
-static void force_gradient(const struct gsn_explicit *e, const double H[9],
-                           double F[9])
+/* The P of a nodal point (eq. (29)) from its H and nominal stress sigma'
+ * (component c at x[c * s]) and its pore pressure u (explicit.h,
+ * pore_pressure): w (sigma' - u I) cof F, with F = I + large H (large 0 for
+ * kinematics: small, the forces on the reference configuration). */
+static inline void nodal_piola(double large, const double *restrict H,
+                               const double *restrict stress, size_t s,
+                               double u, double w, double P[9])
 {
+    double F[9], sigma[6];
+#pragma GCC unroll 9
     for (int a = 0; a < 9; ++a)
-        F[a] = identity_entry(a) + (e->small_strain ? 0.0 : H[a]);
+        F[a] = identity_entry(a) + large * H[a * s];
+#pragma GCC unroll 9
+    for (int a = 0; a < 6; ++a)
+        sigma[a] = stress[a * s] - (a < 3 ? u : 0.0);
+    point_piola(F, sigma, w, P);
 }
 
 static inline double voigt_contract(const double a[6], const double b[6])
@@ -969,8 +961,7 @@ point_kinematics(int small_strain, const double *restrict H,
  * point_kinematics: the elastic share of its strain increment deps, the
  * work of the mean of its old and new total stress (the pore pressure u
  * rises from u_old to u_new) over the mid-step volume Jmid w, and
- * P = w (sigma - u_new I) cof F (eq. (29); F = I + large Hnew: large is 0
- * for kinematics: small, the forces on the reference configuration). */
+ * its P (nodal_piola, with u_new and Hnew). */
 __attribute__((always_inline)) static inline void
 point_end(double large, const double *restrict deps, const double *restrict old,
           const double *restrict stress, const double *restrict Hnew,
@@ -978,21 +969,17 @@ point_end(double large, const double *restrict deps, const double *restrict old,
           double w, double *restrict share, double *restrict energy,
           double *restrict P)
 {
-    double de[6], mean[6], sigma[6], F[9], Pp[9];
+    double de[6], mean[6], Pp[9];
 #pragma GCC unroll 9
     for (int a = 0; a < 6; ++a) {
         de[a] = deps[a * CHUNK];
-        sigma[a] = stress[a * CHUNK] - (a < 3 ? u_new : 0.0);
         mean[a] = 0.5 * (old[a * CHUNK] + stress[a * CHUNK]) -
                   (a < 3 ? 0.5 * (u_old + u_new) : 0.0);
     }
     *share = elastic_share(de, plastic_step); /* 1 without plasticity */
     /* Internal work sigma : d eps over the mid-step volume. */
     *energy = voigt_contract(mean, de) * Jmid * w;
-#pragma GCC unroll 9
-    for (int a = 0; a < 9; ++a)
-        F[a] = identity_entry(a) + large * Hnew[a * CHUNK];
-    point_piola(F, sigma, w, Pp);
+    nodal_piola(large, Hnew, stress, CHUNK, u_new, w, Pp);
 #pragma GCC unroll 9
     for (int a = 0; a < 9; ++a)
         P[a * CHUNK] = Pp[a];
@@ -1466,9 +1453,12 @@ int gsn_explicit_refresh(struct gsn_explicit *e)
     for (int p = 0; p < e->point_count; ++p) {
         double *P = &e->piola[9 * p];
         if (p < e->main_point_count) {
-            double F[9];
-            force_gradient(e, &e->displacement_gradient[9 * p], F);
-            total_piola(e, p, F, w[p], P);
+            nodal_piola(e->small_strain ? 0.0 : 1.0,
+                        &e->displacement_gradient[9 * (size_t)p],
+                        &e->stress[6 * (size_t)p], 1,
+                        e->pore_pressure ? e->load_factor * e->pore_pressure[p]
+                                         : 0.0,
+                        w[p], P);
         } else {
             gsn_voigt_to_matrix(&e->stress[6 * p], P);
             for (int a = 0; a < 9; ++a)

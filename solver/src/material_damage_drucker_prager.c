@@ -218,10 +218,10 @@ ddp_point(const struct ddp *m, const double *restrict de, double *restrict q,
     double *sb = q + DDP_EFFECTIVE_STRESS * s;
 
     /* Elastic-damage predictor (Fig. 3; eqs. (6)-(7)). */
-    double de_norm2 = de[0] * de[0] + de[s] * de[s] + de[2 * s] * de[2 * s];
-    de_norm2 += 2.0 * (de[3 * s] * de[3 * s] + de[4 * s] * de[4 * s] +
-                       de[5 * s] * de[5 * s]);
-    const double e_t = q[DDP_EQUIVALENT_STRAIN * s] + sqrt(de_norm2);
+    double d[6];
+    for (int a = 0; a < 6; ++a)
+        d[a] = de[a * s];
+    const double e_t = q[DDP_EQUIVALENT_STRAIN * s] + gsn_voigt_norm(d);
     q[DDP_EQUIVALENT_STRAIN * s] = e_t;
     double zeta = 0.0;
     if (variant & (DDP_LOCAL_DAMAGE | DDP_NONLOCAL_DAMAGE)) {

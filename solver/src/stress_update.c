@@ -68,13 +68,12 @@ void gsn_stress_update_rotate(const double rotation[9], double tensor[6])
     rotate_strided(rotation, 1, tensor, 1);
 }
 
-/* The strain increments (columns, and point-major into de) and rotations
- * (columns) of n points of a block. */
+/* The strain increments (point-major, into de) and rotations (columns) of n
+ * points of a block. */
 static void block_increments(size_t n, const double *restrict gradient,
-                             double *restrict de, double *restrict de_columns,
-                             double *restrict Q)
+                             double *restrict de, double *restrict Q)
 {
-    double G[9 * STRESS_UPDATE_BLOCK];
+    double G[9 * STRESS_UPDATE_BLOCK], de_columns[6 * STRESS_UPDATE_BLOCK];
     gsn_material_to_columns(n, 9, gradient, 9, G, STRESS_UPDATE_BLOCK);
 #pragma omp simd
     for (size_t i = 0; i < n; ++i)
@@ -120,8 +119,7 @@ int gsn_stress_update(const struct gsn_material_model *model, size_t count,
 {
     const struct gsn_material_ops *ops = model->ops;
     const size_t ns = (size_t)ops->state_size;
-    double block[6 * STRESS_UPDATE_BLOCK], de_columns[6 * STRESS_UPDATE_BLOCK];
-    double Q[9 * STRESS_UPDATE_BLOCK];
+    double block[6 * STRESS_UPDATE_BLOCK], Q[9 * STRESS_UPDATE_BLOCK];
     for (size_t first = 0; first < count; first += STRESS_UPDATE_BLOCK) {
         size_t n = STRESS_UPDATE_BLOCK;
         if (count - first < n)
@@ -130,7 +128,7 @@ int gsn_stress_update(const struct gsn_material_model *model, size_t count,
         if (strain_increment)
             de = strain_increment + 6 * first;
         double *q = ns ? state + ns * first : state;
-        block_increments(n, gradient_increment + 9 * first, de, de_columns, Q);
+        block_increments(n, gradient_increment + 9 * first, de, Q);
         rotate_block(ops, n, Q, stress + 6 * first, q);
         int rc = ops->update(model->context, n, de, stress + 6 * first, q);
         if (rc != GSN_OK)
@@ -149,14 +147,14 @@ int gsn_stress_update_split(const struct gsn_material_model *model,
     const struct gsn_material_ops *ops = model->ops;
     const size_t ns = (size_t)ops->state_size;
     double half[6 * STRESS_UPDATE_BLOCK], de[6 * STRESS_UPDATE_BLOCK];
-    double de_columns[6 * STRESS_UPDATE_BLOCK], Q[9 * STRESS_UPDATE_BLOCK];
+    double Q[9 * STRESS_UPDATE_BLOCK];
     for (size_t first = 0; first < count; first += STRESS_UPDATE_BLOCK) {
         size_t n = STRESS_UPDATE_BLOCK;
         if (count - first < n)
             n = count - first;
         double *q = ns ? state + ns * first : state;
         double *d = strain_increment ? strain_increment + 6 * first : de;
-        block_increments(n, gradient_increment + 9 * first, d, de_columns, Q);
+        block_increments(n, gradient_increment + 9 * first, d, Q);
         for (size_t a = 0; a < 6 * n; ++a)
             half[a] = 0.5 * d[a];
         int rc = ops->update(model->context, n, half, stress + 6 * first, q);
