@@ -70,8 +70,7 @@ import csv, sys, h5py
 out = sys.argv[1]
 rows = list(csv.DictReader(open(f"{out}/history.csv")))
 col = lambda k: [float(r[k]) for r in rows]
-balance = [k + w + d - x - u for k, w, d, x, u in zip(col("kinetic_energy_J"), col("internal_energy_J"),
-           col("damping_work_J"), col("external_work_J"), col("update_energy_J"))]
+balance = col("energy_balance_J")  # the energy check's (docs/solver.md, "Time step")
 frames = h5py.File(f"{out}/results.h5", "r")["frames"]
 uz = frames[sorted(frames.keys())[-1]]["displacement"][:, 2]
 print(f"  at the end (t = {rows[-1]['time_s']} s): {rows[-1]['failed_particles']} failed particles; "

@@ -858,6 +858,8 @@ done:
 
 double gsn_ramp_factor(double ramp, enum gsn_constraint_field kind, double t)
 {
+    if (kind == GSN_FIELD_HOMOGENEOUS)
+        return 0.0;
     if (ramp <= 0.0 || t >= ramp)
         return kind == GSN_FIELD_DISPLACEMENT ? t - 0.5 * ramp
                : kind == GSN_FIELD_VELOCITY   ? 1.0

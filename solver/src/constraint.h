@@ -34,7 +34,9 @@ struct gsn_constraints;
 enum gsn_constraint_field {
     GSN_FIELD_DISPLACEMENT,
     GSN_FIELD_VELOCITY,
-    GSN_FIELD_ACCELERATION
+    GSN_FIELD_ACCELERATION,
+    GSN_FIELD_HOMOGENEOUS /* 0 everywhere: the projection onto the motions
+                             the constraints allow (the stable step) */
 };
 
 /* The prescribed value of field `kind` at time t per unit prescribed

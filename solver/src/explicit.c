@@ -45,6 +45,7 @@ enum { LANCZOS_STEPS = 120 };
 /* The sums of a step over the particles (or points) of one range. */
 struct gsn_step_sums {
     double dissipated, external, kinetic, internal; /* J */
+    double kinetic_conserved; /* J, explicit.h: conserved_kinetic_energy */
     double released;     /* J: the work of the released force (release_force) */
     int first_nonfinite; /* the lowest particle whose velocity is not
                             finite, or -1 */
@@ -1570,12 +1571,12 @@ static struct gsn_step_sums step_loop(struct gsn_explicit *e, int count,
 {
     int pieces = (count + SUM_PIECE - 1) / SUM_PIECE;
     struct gsn_step_sums *partial = e->step_partial,
-                         total = {0, 0, 0, 0, 0, -1};
+                         total = {0, 0, 0, 0, 0, 0, -1};
 #pragma omp parallel for schedule(static) if (parallel_worth(count))
     for (int k = 0; k < pieces; ++k) {
         int i0 = k * SUM_PIECE,
             i1 = i0 + SUM_PIECE < count ? i0 + SUM_PIECE : count;
-        partial[k] = (struct gsn_step_sums){0, 0, 0, 0, 0, -1};
+        partial[k] = (struct gsn_step_sums){0, 0, 0, 0, 0, 0, -1};
         range(e, i0, i1, &partial[k]);
     }
     for (int k = 0; k < pieces; ++k) {
@@ -1583,6 +1584,7 @@ static struct gsn_step_sums step_loop(struct gsn_explicit *e, int count,
         total.released += partial[k].released;
         total.external += partial[k].external;
         total.kinetic += partial[k].kinetic;
+        total.kinetic_conserved += partial[k].kinetic_conserved;
         total.internal += partial[k].internal;
         if (total.first_nonfinite < 0)
             total.first_nonfinite = partial[k].first_nonfinite;
@@ -1680,8 +1682,22 @@ static void new_velocities(struct gsn_explicit *e, int i0, int i1,
     }
 }
 
+/* The kinetic energies of particles [i0, i1) (explicit.h). */
+static void kinetic_energies(struct gsn_explicit *e, int i0, int i1,
+                             struct gsn_step_sums *sums)
+{
+    const double half_step2 = 0.25 * e->dt * e->dt;
+    for (int at = 3 * i0; at < 3 * i1; ++at) {
+        double v = e->velocity[at], a = e->acceleration[at],
+               m = e->mass[at / 3];
+        sums->kinetic += 0.5 * m * v * v;
+        /* v_{n-1/2} v_{n+1/2} = v^2 - (dt/2)^2 a^2 */
+        sums->kinetic_conserved += 0.5 * m * (v * v - half_step2 * a * a);
+    }
+}
+
 /* The external work (trapezoid; the reactions C^T lambda come from the
- * constraints' correction of a), the kinetic energy, and a check that v
+ * constraints' correction of a), the kinetic energies, and a check that v
  * is finite. */
 static void reactions_and_energies(struct gsn_explicit *e, int i0, int i1,
                                    struct gsn_step_sums *sums)
@@ -1693,14 +1709,21 @@ static void reactions_and_energies(struct gsn_explicit *e, int i0, int i1,
             sums->external += 0.5 * (e->previous_external[at] + total) *
                               e->increment[4 * (size_t)i + (size_t)k];
             e->previous_external[at] = total;
-            sums->kinetic +=
-                0.5 * e->mass[i] * e->velocity[at] * e->velocity[at];
         }
         if (sums->first_nonfinite < 0 &&
             !isfinite(e->velocity[3 * i] + e->velocity[3 * i + 1] +
                       e->velocity[3 * i + 2]))
             sums->first_nonfinite = i;
     }
+    kinetic_energies(e, i0, i1, sums);
+}
+
+void gsn_explicit_kinetic_energies(struct gsn_explicit *e)
+{
+    struct gsn_step_sums sums =
+        step_loop(e, e->particle_count, kinetic_energies);
+    e->kinetic_energy = sums.kinetic;
+    e->conserved_kinetic_energy = sums.kinetic_conserved;
 }
 
 /* new_velocities and reactions_and_energies on one piece, while it is in
@@ -1791,6 +1814,7 @@ int gsn_explicit_step(struct gsn_explicit *e)
               "finite; the step is unstable: reduce time.step",
               e->step + 1, t1, sums.first_nonfinite);
     e->kinetic_energy = sums.kinetic;
+    e->conserved_kinetic_energy = sums.kinetic_conserved;
     e->internal_energy += step_loop(e, e->point_count, internal_work).internal;
     e->external_work += sums.external;
     e->damping_work += dissipated;
@@ -1900,6 +1924,17 @@ static double tridiagonal_largest(const double *a, const double *b, int m,
     return theta;
 }
 
+/* x (n x 3) projected onto the motions the constraints allow (all of them
+ * without constraints). */
+static int project_homogeneous(struct gsn_explicit *e, double *x)
+{
+    if (!e->constraints)
+        return GSN_OK;
+    return gsn_constraints_apply(e->constraints,
+                                 &e->quadrature->particle_values,
+                                 GSN_FIELD_HOMOGENEOUS, 0.0, x, NULL);
+}
+
 int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt)
 {
     const size_t n3 = 3 * (size_t)e->particle_count;
@@ -1910,15 +1945,23 @@ int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt)
     GSN_CALL_GOTO(alloc_array((void **)&previous, n3, sizeof(double)), rc,
                   done);
     GSN_CALL_GOTO(alloc_array((void **)&y, n3, sizeof(double)), rc, done);
-    /* Lanczos on M^-1 K in the mass inner product <x, y> = x^T M y, from a
-     * deterministic start with every mode present (a hashed sequence);
-     * the Ritz values approach the largest eigenvalue from below, so the
-     * estimate adds the residual bound beta_m |s_m|. */
+    /* Lanczos on P M^-1 K P in the mass inner product <x, y> = x^T M y,
+     * with P the constraints' mass-orthogonal projection (constraint.h):
+     * the loop corrects every acceleration by it, so central differences
+     * are stable up to 2 / sqrt(lambda_max) of the motions it allows, and
+     * the stiffest modes of M^-1 K (held particles of small mass, on the
+     * edges of held faces) are not among them: Slope I's step 1.7 times
+     * the unconstrained estimate (docs/solver.md, "Speed"). P is
+     * M-self-adjoint, so projecting the start and every new vector keeps
+     * the recurrence. From a deterministic start with every mode present
+     * (a hashed sequence); the Ritz values approach the largest eigenvalue
+     * from below, so the estimate adds the residual bound beta_m |s_m|. */
     unsigned state = 12345u;
     for (size_t i = 0; i < n3; ++i) {
         state = state * 1664525u + 1013904223u;
         v[i] = (double)(state >> 8) / 16777216.0 - 0.5;
     }
+    GSN_CALL_GOTO(project_homogeneous(e, v), rc, done);
     double norm = 0.0;
     for (size_t i = 0; i < n3; ++i)
         norm += e->mass[i / 3] * v[i] * v[i];
@@ -1932,14 +1975,14 @@ int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt)
         for (size_t i = 0; i < n3; ++i)
             a += v[i] * y[i];
         alpha[m] = a;
-        /* w = M^-1 K v - a v - beta_(m-1) v_(m-1), into y */
+        /* w = P M^-1 K v - a v - beta_(m-1) v_(m-1), into y */
+        for (size_t i = 0; i < n3; ++i)
+            y[i] = y[i] / e->mass[i / 3] - a * v[i] -
+                   (m > 0 ? beta[m - 1] * previous[i] : 0.0);
+        GSN_CALL_GOTO(project_homogeneous(e, y), rc, done);
         double b2 = 0.0;
-        for (size_t i = 0; i < n3; ++i) {
-            double w = y[i] / e->mass[i / 3] - a * v[i] -
-                       (m > 0 ? beta[m - 1] * previous[i] : 0.0);
-            y[i] = w;
-            b2 += e->mass[i / 3] * w * w;
-        }
+        for (size_t i = 0; i < n3; ++i)
+            b2 += e->mass[i / 3] * y[i] * y[i];
         beta[m] = sqrt(b2);
         double last;
         double theta = tridiagonal_largest(alpha, beta, m + 1, &last, work);
@@ -1956,7 +1999,8 @@ int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt)
     }
     GSN_CHECK_GOTO(lambda > 0.0, rc, GSN_ERR_NUMERICAL, done,
                    "the stiffness has no positive eigenvalue");
-    *dt = 2.0 / sqrt(lambda);
+    /* (explicit.h: the local damping's stiffening) */
+    *dt = 2.0 / sqrt((1.0 + e->damping_local) * lambda);
 done:
     free(v);
     free(previous);
@@ -2103,6 +2147,7 @@ int gsn_explicit_settle(struct gsn_explicit *e)
      * starts the next trapezoid (no work: d does not move) */
     struct gsn_step_sums sums = step_loop(e, n, reactions_and_energies);
     e->kinetic_energy = sums.kinetic;
+    e->conserved_kinetic_energy = sums.kinetic_conserved;
     return GSN_OK;
 }
 
@@ -2513,6 +2558,7 @@ int gsn_explicit_carry_over(struct gsn_explicit *to,
     to->damping_work = from->damping_work;
     to->release_work = from->release_work;
     to->kinetic_energy = from->kinetic_energy;
+    to->conserved_kinetic_energy = from->conserved_kinetic_energy;
     to->allow_failure = from->allow_failure;
     to->distortion_strain = 0.0;
     to->distortion_jacobian_min = to->distortion_jacobian_max = 1.0;

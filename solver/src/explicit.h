@@ -111,6 +111,11 @@ struct gsn_explicit {
     double *state;        /* main points x state_size */
 
     double kinetic_energy, internal_energy, external_work; /* J */
+    /* 1/2 v_{n-1/2} M v_{n+1/2} = 1/2 v M v - dt^2/8 a M a: with W_int what
+     * central differences conserve exactly on a linear body, where
+     * 1/2 v M v swings by (omega dt / 2)^2 of each mode's energy; the
+     * energy balance's kinetic term (solve.c, check_energy), J */
+    double conserved_kinetic_energy;
     double phase_seconds[GSN_PHASE_COUNT]; /* wall time of the steps, s */
     /* of it, spent factorizing the boundary matrices (the first solve
      * after a restart or new masses), taken out of
@@ -342,6 +347,10 @@ int gsn_explicit_refresh(struct gsn_explicit *e);
  * gsn_explicit_step calls it; tests drive it with prescribed motions. */
 int gsn_explicit_update_stress(struct gsn_explicit *e);
 
+/* kinetic_energy and conserved_kinetic_energy of the present v and a (a
+ * step sets them; a restart's restored state calls it). */
+void gsn_explicit_kinetic_energies(struct gsn_explicit *e);
+
 /* The bytes a step must move at the least (the roofline's data, issue 17):
  * every array it reads once and every array it changes written once: the
  * packed rows and slot tables; the slot forces (written, then read by the
@@ -364,10 +373,13 @@ void gsn_explicit_set_time_step(struct gsn_explicit *e, double dt);
 int gsn_explicit_step(struct gsn_explicit *e);
 
 /* The largest stable step of the linear elastic system at the reference
- * configuration, 2 / sqrt(lambda_max(M^-1 K)), with lambda_max from
+ * configuration under the present constraints and local damping:
+ * 2 / sqrt((1 + damping_local) lambda_max), lambda_max of P M^-1 K P (P the
+ * constraints' projection, which the loop applies to a every step) from
  * Lanczos in the mass inner product (deterministic start; the largest Ritz
- * value plus its residual bound). Unconstrained, so it bounds the
- * constrained system's step from below. */
+ * value plus its residual bound). The local damping scales each
+ * component's unbalanced force by a factor in [1 - a, 1 + a], the
+ * stiffness by up to 1 + a (docs/solver.md, "Speed"). */
 int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt);
 
 /* Resultant of the tractions on the boundary facets of model surface

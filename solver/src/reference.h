@@ -53,7 +53,7 @@ struct gsn_reference_report {
      * and settled */
     double seconds_cells, seconds_kernels, seconds_constraints, seconds_loop,
         seconds_state;
-    double kinetic_before, kinetic_after; /* J */
+    double kinetic_before, kinetic_after; /* J, conserved (explicit.h) */
     double mass_error;                    /* |sum m' - sum m| / sum m */
     double momentum_error;                /* |sum m'v' - sum m v| / sum m |v| */
     int interpolation_iterations;

@@ -186,6 +186,17 @@ static int history_flush(const struct run *r)
     return GSN_OK;
 }
 
+/* KE + W_int + W_damping - W_ext less the kinetic energy the reference
+ * updates added (not work done), with the kinetic energy central
+ * differences conserve (explicit.h): constant on a stable linear body to
+ * round-off, J. */
+static double energy_balance(const struct run *r)
+{
+    const struct gsn_explicit *e = r->reference->loop;
+    return e->conserved_kinetic_energy + e->internal_energy + e->damping_work -
+           e->external_work - gsn_reference_energy(r->reference);
+}
+
 /* The header: each column's unit after its name (time_s, NAME_fz_N), so
  * the file stays a plain CSV that carries its units. */
 static int write_history_header(struct run *r)
@@ -199,7 +210,7 @@ static int write_history_header(struct run *r)
     fprintf(r->history,
             ",kinetic_energy_J,internal_energy_J,external_work_J,max_damage,"
             "damping_work_J,reference_updates,update_energy_J,"
-            "failed_particles\n");
+            "failed_particles,energy_balance_J\n");
     GSN_CALL(history_flush(r));
     return GSN_OK;
 }
@@ -311,10 +322,11 @@ static int write_history_row(struct run *r)
     for (int j = 0; j < e->particle_count; ++j)
         if (r->frame.field[GSN_FRAME_DAMAGE][j] > max_damage)
             max_damage = r->frame.field[GSN_FRAME_DAMAGE][j];
-    fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g,%d\n",
+    fprintf(r->history, ",%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g,%d,%.9g\n",
             e->kinetic_energy, e->internal_energy, e->external_work, max_damage,
             e->damping_work, r->reference->update_count,
-            gsn_reference_energy(r->reference), e->dead_count);
+            gsn_reference_energy(r->reference), e->dead_count,
+            energy_balance(r));
     free(multiplier);
     GSN_CALL(history_flush(r));
     return GSN_OK;
@@ -698,7 +710,9 @@ static int read_checkpoint(struct run *r)
                    "%s: its checkpoint is at t = %.6g s, after this case's "
                    "time.end %.6g s: a restart can only run further",
                    r->results_path, saved_time, r->c->time_end);
-    e->kinetic_energy = energy[0];
+    /* energy[0] is the kinetic energy of the restored v: recomputed with
+     * the conserved one (the same sum) */
+    gsn_explicit_kinetic_energies(e);
     e->internal_energy = energy[1];
     e->external_work = energy[2];
     e->damping_work = energy[3];
@@ -844,18 +858,22 @@ static int choose_time_step(struct run *r)
     const struct gsn_case *c = r->c;
     double stable = 0.0;
     GSN_CALL(gsn_explicit_stable_step(e, &stable));
+    char damped[64] = "";
+    if (e->damping_local > 0.0)
+        snprintf(damped, sizeof damped, " and the damping (local %g)",
+                 e->damping_local);
     if (c->time_step_auto) {
         e->dt = c->time_step_safety * stable;
         if (!r->options->quiet)
             printf("time step: %.4g s (auto: %.2f x the stable step %.4g s "
-                   "from Lanczos on M^-1 K)\n",
-                   e->dt, c->time_step_safety, stable);
+                   "from Lanczos on M^-1 K within the constraints%s)\n",
+                   e->dt, c->time_step_safety, stable, damped);
     } else {
         GSN_CHECK(c->time_step <= stable || r->options->force, GSN_ERR_INPUT,
                   "%s: time.step = %.4g s is above the stable step %.4g s of "
-                  "this model (Lanczos on M^-1 K); use a smaller "
-                  "step, 'step: auto', or --force",
-                  c->path, c->time_step, stable);
+                  "this model (Lanczos on M^-1 K within the constraints%s); "
+                  "use a smaller step, 'step: auto', or --force",
+                  c->path, c->time_step, stable, damped);
         e->dt = c->time_step;
         if (!r->options->quiet)
             printf("time step: %.4g s (the stable step is %.4g s)%s\n", e->dt,
@@ -906,9 +924,7 @@ static int check_energy(struct run *r)
     const struct gsn_explicit *e = r->reference->loop;
     double scale = fmax(fmax(e->kinetic_energy, fabs(e->internal_energy)),
                         fmax(fabs(e->external_work), e->damping_work));
-    /* the kinetic energy the reference updates added is not work done */
-    double balance = e->kinetic_energy + e->internal_energy + e->damping_work -
-                     e->external_work - gsn_reference_energy(r->reference);
+    double balance = energy_balance(r);
     double check_from =
         fmax(r->c->time_ramp, QUASI_STATIC_FIRST * r->c->time_end);
     if (e->time >= check_from && e->internal_energy > 0.0 &&
@@ -2084,21 +2100,8 @@ static int geostatic_stage(struct run *r)
     const struct gsn_case *c = r->c;
     struct gsn_explicit *e = r->reference->loop;
     double started = now_seconds(), last_print = started;
-    double extent = body_height(r, 0); /* the largest along the axes */
-    double wave = gsn_case_slowest_wave(c, 0);
-    long transit = (long)ceil(extent / (wave * e->dt));
-    long ramp = 4 * transit < 50 ? 50 : 4 * transit;
-    long window = MECHANISM_WINDOW_TRANSITS * transit;
-    if (window < 50)
-        window = 50;
-    if (c->geostatic_k0 > 0.0) {
-        GSN_CALL(set_level_ground_stress(r));
-        ramp = 0; /* the stress is there: the loads too */
-    }
-    double damping = e->damping_local, residual = INFINITY;
-    e->damping_local = c->geostatic_damping;
-    e->damping_net = 1;
-    long step = 0;
+    double damping = e->damping_local, run_step = e->dt, residual = INFINITY;
+    long step = 0, ramp = 0, window = 0;
     int rc = GSN_OK, mechanism = 0;
     double move_limit = MECHANISM_MOVE * body_height(r, 1);
     struct mechanism_watch watch = {INFINITY, 0.0, 0.0, 0};
@@ -2121,6 +2124,24 @@ static int geostatic_stage(struct run *r)
                   rc, done);
     GSN_CALL_GOTO(gsn_constraints_set_mass(stage, e->mass), rc, done);
     gsn_explicit_set_constraints(e, stage);
+    e->damping_local = c->geostatic_damping;
+    e->damping_net = 1;
+    /* The stage's own step: its fewer constraints and strong damping
+     * lower the stable step (explicit.h); never above the run's. */
+    double stable = 0.0;
+    GSN_CALL_GOTO(gsn_explicit_stable_step(e, &stable), rc, done);
+    gsn_explicit_set_time_step(e, fmin(run_step, c->time_step_safety * stable));
+    double extent = body_height(r, 0); /* the largest along the axes */
+    double wave = gsn_case_slowest_wave(c, 0);
+    long transit = (long)ceil(extent / (wave * e->dt));
+    ramp = 4 * transit < 50 ? 50 : 4 * transit;
+    window = MECHANISM_WINDOW_TRANSITS * transit;
+    if (window < 50)
+        window = 50;
+    if (c->geostatic_k0 > 0.0) {
+        GSN_CALL_GOTO(set_level_ground_stress(r), rc, done);
+        ramp = 0; /* the stress is there: the loads too */
+    }
     while (step < c->geostatic_max_steps) {
         GSN_CHECK_GOTO(!stop_signal, rc, GSN_ERR_INTERRUPTED, done,
                        "%s during the geostatic stage (step %ld): nothing "
@@ -2189,10 +2210,10 @@ static int geostatic_stage(struct run *r)
                      c->geostatic_k0);
         else
             snprintf(how, sizeof how, "the dead loads raised over %ld", ramp);
-        printf("geostatic: at rest after %ld steps (%s): unbalanced force "
-               "%.3g of the load (limit %.3g), largest displacement %.3g m, "
-               "%.1f s%s\n",
-               step, how, residual, c->geostatic_residual,
+        printf("geostatic: at rest after %ld steps of %.3g s (%s): "
+               "unbalanced force %.3g of the load (limit %.3g), largest "
+               "displacement %.3g m, %.1f s%s\n",
+               step, e->dt, how, residual, c->geostatic_residual,
                r->geostatic_displacement, r->geostatic_seconds,
                r->options->geostatic_only
                    ? ""
@@ -2201,6 +2222,7 @@ static int geostatic_stage(struct run *r)
     }
 done:
     gsn_explicit_set_constraints(e, r->reference->constraints);
+    gsn_explicit_set_time_step(e, run_step);
     gsn_constraints_destroy(&stage);
     free(fixed_only);
     free(work);

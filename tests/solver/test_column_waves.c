@@ -4,7 +4,8 @@
  * mode, f1 = c / (4 H) with c = c_p (longitudinal) or c_s (shear). The
  * frequency is measured from the upward zero crossings of the top's motion
  * about the static deflection over ten periods; the total energy
- * KE + W_int - W_ext must stay constant. */
+ * KE + W_int - W_ext (history.csv's energy_balance_J, with the kinetic
+ * energy central differences conserve) must stay constant. */
 #include "geoscni/case.h"
 #include "geoscni/solver.h"
 #include "solver_fixtures.h"
@@ -19,8 +20,8 @@ struct record {
     double time[MAX_ROWS], top[MAX_ROWS], balance[MAX_ROWS], work[MAX_ROWS];
 };
 
-/* Reads history.csv: the top's mean displacement along axis and the
- * energies. */
+/* Reads history.csv: the top's mean displacement along axis, the energy
+ * balance and the external work. */
 static void read_history(const char *folder, int axis, struct record *r)
 {
     char path[4200], line[8192];
@@ -29,17 +30,19 @@ static void read_history(const char *folder, int axis, struct record *r)
     TEST_TRUE(file != NULL);
     if (!file)
         return;
-    int top_column = -1, kinetic = -1, column = 0;
+    int top_column = -1, work = -1, balance = -1, column = 0;
     TEST_TRUE(fgets(line, sizeof line, file) != NULL);
     const char *names[3] = {"zmax_ux_m", "zmax_uy_m", "zmax_uz_m"};
     for (char *token = strtok(line, ",\n"); token;
          token = strtok(NULL, ",\n"), ++column) {
         if (strcmp(token, names[axis]) == 0)
             top_column = column;
-        if (strcmp(token, "kinetic_energy_J") == 0)
-            kinetic = column;
+        if (strcmp(token, "external_work_J") == 0)
+            work = column;
+        if (strcmp(token, "energy_balance_J") == 0)
+            balance = column;
     }
-    TEST_TRUE(top_column >= 0 && kinetic >= 0);
+    TEST_TRUE(top_column >= 0 && work >= 0 && balance >= 0);
     r->count = 0;
     while (fgets(line, sizeof line, file) && r->count < MAX_ROWS) {
         double value[64];
@@ -49,9 +52,8 @@ static void read_history(const char *folder, int axis, struct record *r)
             value[n++] = strtod(token, NULL);
         r->time[r->count] = value[0];
         r->top[r->count] = value[top_column];
-        r->balance[r->count] =
-            value[kinetic] + value[kinetic + 1] - value[kinetic + 2];
-        r->work[r->count] = value[kinetic + 2];
+        r->balance[r->count] = value[balance];
+        r->work[r->count] = value[work];
         r->count++;
     }
     fclose(file);
@@ -87,8 +89,13 @@ static double column_frequency(const char *case_path, int axis,
      * (kh = 0.04 for the first mode) costs 0.03%. */
     TEST_REL(frequency, expected, 0.01);
     TEST_TRUE(periods >= 9);
-    /* 1e-4: the issue's tolerance for the total energy. */
-    TEST_TRUE(drift <= 1e-4 * scale);
+    /* The issue asked 1e-4; central differences conserve this balance
+     * exactly on a linear body (explicit.h, conserved_kinetic_energy), so
+     * what is left is the column's geometric nonlinearity and round-off
+     * (1.8e-9 and 1.6e-10 measured, 2026-12-07). 1e-7: fifty times that.
+     * (With 1/2 v M v the balance swings by (omega_1 dt / 2)^2 of the
+     * mode's energy, 1.1e-4 at the auto step of 1.7 ms.) */
+    TEST_TRUE(drift <= 1e-7 * scale);
     char command[4200];
     snprintf(command, sizeof command, "rm -rf '%s'", folder);
     TEST_INT(system(command), 0);

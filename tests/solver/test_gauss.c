@@ -353,7 +353,7 @@ static void test_column(void)
         top[k] /= at_top;
         time[k] = e->time;
         double balance =
-            e->kinetic_energy + e->internal_energy - e->external_work;
+            e->conserved_kinetic_energy + e->internal_energy - e->external_work;
         if (k == 0)
             balance0 = balance;
         drift = fmax(drift, fabs(balance - balance0));
@@ -370,8 +370,10 @@ static void test_column(void)
     /* 1%: the issue's tolerance, as for SCNI in test_column_waves. */
     TEST_REL(f, f1, 0.01);
     TEST_TRUE(periods >= 9);
-    /* 1e-4: the issue's tolerance for the total energy. */
-    TEST_TRUE(drift <= 1e-4 * work);
+    /* The issue asked 1e-4; with the kinetic energy central differences
+     * conserve (explicit.h) the balance of this linear column is constant
+     * to round-off (3e-15 measured, 2026-12-07): 1e-12. */
+    TEST_TRUE(drift <= 1e-12 * work);
     free(time);
     free(top);
     free(u);

@@ -14,7 +14,7 @@
 . ./cli_testing.sh
 root=$(cd ../.. && pwd)
 "$geoscni" run cases/cli_box.yaml -o "$out/box" --no-pictures -q 2>/dev/null || fail "run cli_box failed"
-expected="time_s,step,bottom_ux_m,bottom_uy_m,bottom_uz_m,bottom_fx_N,bottom_fy_N,bottom_fz_N,top_ux_m,top_uy_m,top_uz_m,top_fx_N,top_fy_N,top_fz_N,kinetic_energy_J,internal_energy_J,external_work_J,max_damage,damping_work_J,reference_updates,update_energy_J,failed_particles"
+expected="time_s,step,bottom_ux_m,bottom_uy_m,bottom_uz_m,bottom_fx_N,bottom_fy_N,bottom_fz_N,top_ux_m,top_uy_m,top_uz_m,top_fx_N,top_fy_N,top_fz_N,kinetic_energy_J,internal_energy_J,external_work_J,max_damage,damping_work_J,reference_updates,update_energy_J,failed_particles,energy_balance_J"
 [ "$(head -1 "$out/box/history.csv")" = "$expected" ] || fail "header: $(head -1 "$out/box/history.csv")"
 /usr/bin/python3 - "$out/box/history.csv" <<'PY' || fail "history.csv is not a plain numeric CSV for csv and numpy"
 import csv, sys
