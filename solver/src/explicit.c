@@ -1924,10 +1924,13 @@ static double tridiagonal_largest(const double *a, const double *b, int m,
     return theta;
 }
 
-/* x (n x 3) projected onto the motions the constraints allow (all of them
- * without constraints). */
+/* x (n x 3) projected onto the motions the constraints allow, as the loop
+ * projects a: the plane-strain axis held, then the constraints' rows. */
 static int project_homogeneous(struct gsn_explicit *e, double *x)
 {
+    if (e->held_axis >= 0)
+        for (int i = 0; i < e->particle_count; ++i)
+            x[3 * (size_t)i + (size_t)e->held_axis] = 0.0;
     if (!e->constraints)
         return GSN_OK;
     return gsn_constraints_apply(e->constraints,
