@@ -690,6 +690,20 @@ static int read_checkpoint(struct run *r)
                       rc, done);
     }
     double expected = base_time + (double)(step - base_step) * now_step;
+    /* With step: auto the step is the solver's: a run begun by a build
+     * whose estimate differed (the free body's until 2026-12-07,
+     * docs/solver.md "Time step") goes on with its own clock where this
+     * build finds that clock's steps stable. */
+    double stable = r->reference->first_step / r->c->time_step_safety;
+    if (r->c->time_step_auto && first != r->reference->first_step &&
+        fmax(first, now_step) <= stable) {
+        if (!r->options->quiet)
+            printf("restart: the run began with a step of %.4g s, where "
+                   "this build's estimate gives %.4g s: it goes on with its "
+                   "own (stable for this build up to %.4g s)\n",
+                   first, r->reference->first_step, stable);
+        r->reference->first_step = first;
+    }
     GSN_CHECK_GOTO(
         fabs(first - r->reference->first_step) <= 1e-12 * first &&
             fabs(saved_time - expected) <= 1e-9 * fmax(saved_time, now_step),

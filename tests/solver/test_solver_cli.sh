@@ -172,6 +172,38 @@ sed -e "s/end: 1000/end: $end/" "$out/long.yaml" >"$out/short.yaml"
     fail "the uninterrupted run failed: $(cat "$out/err")"
 cmp -s "$out/int/history.csv" "$out/straight/history.csv" ||
     fail "interrupted and continued, the history differs from the uninterrupted run's"
+# A run begun by a build whose auto step differed (an earlier estimate):
+# the checkpoint's clock scaled by hand; --restart goes on with that clock
+# where this build finds it stable, and refuses one above its stable step.
+scale_clock() { # FOLDER FACTOR
+    /usr/bin/python3 - "$1/results.h5" "$2" <<'PY'
+import sys, h5py
+with h5py.File(sys.argv[1], "r+") as f:
+    c, k = f["checkpoint"].attrs, float(sys.argv[2])
+    for name in ("time_step_first", "time_step", "time_base"):
+        c[name] = c[name] * k
+    c["time"] = c["time_base"] + (c["step"] - c["step_base"]) * c["time_step"]
+PY
+}
+later=$(awk -v t="$end" 'BEGIN { printf "%.6g", t + 0.05 }')
+sed -e "s/end: 1000/end: $later/" "$out/long.yaml" >"$out/later.yaml"
+for factor in 0.9 1.5; do
+    rm -rf "$out/clock" && cp -r "$out/int" "$out/clock"
+    scale_clock "$out/clock" $factor || fail "could not scale the checkpoint's clock"
+    "$geoscni" solve "$out/later.yaml" -o "$out/clock" --restart >"$out/clock.log" 2>&1
+    status=$?
+    if [ $factor = 0.9 ]; then
+        [ $status -eq 0 ] && grep -q "^restart: the run began with a step of .* s: it goes on with its own" "$out/clock.log" ||
+            fail "a restart on an earlier build's stable clock: exit $status, $(grep -i 'restart\|error' "$out/clock.log")"
+        # the run's last row within a step of time.end (the step is its own)
+        step=$(sed -n 's/^restart: the run began with a step of \([0-9.e+-]*\) s.*/\1/p' "$out/clock.log")
+        awk -F, -v t="$later" -v dt="$step" 'END { d = $1 - t; exit !(d < dt && d > -dt) }' "$out/clock/history.csv" ||
+            fail "the restart on the earlier clock did not reach t = $later: $(tail -1 "$out/clock/history.csv" | cut -d, -f1)"
+    else
+        [ $status -eq 2 ] && grep -q "the time step changed" "$out/clock.log" ||
+            fail "a restart on a clock above the stable step: exit $status, $(tail -2 "$out/clock.log")"
+    fi
+done
 # output.history_every: 0.1 adds rows at the steps nearest its multiples
 # (within half a step), all of them, besides the frames' (every 0.5 s)
 "$geoscni" solve "$out/short.yaml" -o "$out/straight" >"$out/straight.log" 2>&1 ||
