@@ -1636,14 +1636,15 @@ static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
 {
     const double dt = e->dt;
     double *a1 = e->new_acceleration;
+    double released = 0.0, dissipated = 0.0; /* (as reactions_and_energies) */
     for (int i = i0; i < i1; ++i) {
         for (int k = 0; k < 3; ++k) {
             int at = 3 * i + k;
             double f = net_force(e, at, e->release_next);
             if (e->release_force)
-                sums->released += 0.5 * (e->release_factor + e->release_next) *
-                                  e->release_force[at] *
-                                  e->increment[4 * (size_t)i + (size_t)k];
+                released += 0.5 * (e->release_factor + e->release_next) *
+                            e->release_force[at] *
+                            e->increment[4 * (size_t)i + (size_t)k];
             if (e->damping_local > 0.0) {
                 double damping = 0.0;
                 if (!(e->constrained[i] & (1 << k))) {
@@ -1656,14 +1657,16 @@ static void new_accelerations(struct gsn_explicit *e, int i0, int i1,
                               : v_half < 0.0 ? e->damping_local * net
                                              : 0.0;
                 }
-                sums->dissipated -= 0.5 * (e->damping_force[at] + damping) *
-                                    e->increment[4 * (size_t)i + (size_t)k];
+                dissipated -= 0.5 * (e->damping_force[at] + damping) *
+                              e->increment[4 * (size_t)i + (size_t)k];
                 e->damping_force[at] = damping;
                 f += damping;
             }
             a1[at] = k == e->held_axis ? 0.0 : f / e->mass[i];
         }
     }
+    sums->released += released;
+    sums->dissipated += dissipated;
 }
 
 /* v_{n+1} = v_n + dt/2 (a_n + a_{n+1}) (eq. (34)); plane_strain holds one
@@ -1682,40 +1685,56 @@ static void new_velocities(struct gsn_explicit *e, int i0, int i1,
     }
 }
 
-/* The kinetic energies of particles [i0, i1) (explicit.h). */
+/* Component at's share of the kinetic energies (explicit.h), added to
+ * kinetic and conserved. */
+static inline void add_kinetic(const struct gsn_explicit *e, int at,
+                               double half_step2, double *kinetic,
+                               double *conserved)
+{
+    double v = e->velocity[at], a = e->acceleration[at], m = e->mass[at / 3];
+    *kinetic += 0.5 * m * v * v;
+    /* v_{n-1/2} v_{n+1/2} = v^2 - (dt/2)^2 a^2 */
+    *conserved += 0.5 * m * (v * v - half_step2 * a * a);
+}
+
+/* The kinetic energies of particles [i0, i1). */
 static void kinetic_energies(struct gsn_explicit *e, int i0, int i1,
                              struct gsn_step_sums *sums)
 {
     const double half_step2 = 0.25 * e->dt * e->dt;
-    for (int at = 3 * i0; at < 3 * i1; ++at) {
-        double v = e->velocity[at], a = e->acceleration[at],
-               m = e->mass[at / 3];
-        sums->kinetic += 0.5 * m * v * v;
-        /* v_{n-1/2} v_{n+1/2} = v^2 - (dt/2)^2 a^2 */
-        sums->kinetic_conserved += 0.5 * m * (v * v - half_step2 * a * a);
-    }
+    double kinetic = 0.0, conserved = 0.0;
+    for (int at = 3 * i0; at < 3 * i1; ++at)
+        add_kinetic(e, at, half_step2, &kinetic, &conserved);
+    sums->kinetic += kinetic;
+    sums->kinetic_conserved += conserved;
 }
 
 /* The external work (trapezoid; the reactions C^T lambda come from the
  * constraints' correction of a), the kinetic energies, and a check that v
- * is finite. */
+ * is finite. The sums run in locals: the stores to previous_external could
+ * alias *sums. */
 static void reactions_and_energies(struct gsn_explicit *e, int i0, int i1,
                                    struct gsn_step_sums *sums)
 {
+    const double half_step2 = 0.25 * e->dt * e->dt;
+    double external = 0.0, kinetic = 0.0, conserved = 0.0;
     for (int i = i0; i < i1; ++i) {
         for (int k = 0; k < 3; ++k) {
             int at = 3 * i + k;
             double total = external_force(e, at);
-            sums->external += 0.5 * (e->previous_external[at] + total) *
-                              e->increment[4 * (size_t)i + (size_t)k];
+            external += 0.5 * (e->previous_external[at] + total) *
+                        e->increment[4 * (size_t)i + (size_t)k];
             e->previous_external[at] = total;
+            add_kinetic(e, at, half_step2, &kinetic, &conserved);
         }
         if (sums->first_nonfinite < 0 &&
             !isfinite(e->velocity[3 * i] + e->velocity[3 * i + 1] +
                       e->velocity[3 * i + 2]))
             sums->first_nonfinite = i;
     }
-    kinetic_energies(e, i0, i1, sums);
+    sums->external += external;
+    sums->kinetic += kinetic;
+    sums->kinetic_conserved += conserved;
 }
 
 void gsn_explicit_kinetic_energies(struct gsn_explicit *e)
