@@ -1737,12 +1737,18 @@ static void reactions_and_energies(struct gsn_explicit *e, int i0, int i1,
     sums->kinetic_conserved += conserved;
 }
 
+/* The loop's kinetic energies from a pass's sums. */
+static void keep_kinetic(struct gsn_explicit *e, const struct gsn_step_sums *s)
+{
+    e->kinetic_energy = s->kinetic;
+    e->conserved_kinetic_energy = s->kinetic_conserved;
+}
+
 void gsn_explicit_kinetic_energies(struct gsn_explicit *e)
 {
     struct gsn_step_sums sums =
         step_loop(e, e->particle_count, kinetic_energies);
-    e->kinetic_energy = sums.kinetic;
-    e->conserved_kinetic_energy = sums.kinetic_conserved;
+    keep_kinetic(e, &sums);
 }
 
 /* new_velocities and reactions_and_energies on one piece, while it is in
@@ -1832,8 +1838,7 @@ int gsn_explicit_step(struct gsn_explicit *e)
               "step %ld, t = %.6g s: the velocity of particle %d is not "
               "finite; the step is unstable: reduce time.step",
               e->step + 1, t1, sums.first_nonfinite);
-    e->kinetic_energy = sums.kinetic;
-    e->conserved_kinetic_energy = sums.kinetic_conserved;
+    keep_kinetic(e, &sums);
     e->internal_energy += step_loop(e, e->point_count, internal_work).internal;
     e->external_work += sums.external;
     e->damping_work += dissipated;
@@ -1973,7 +1978,7 @@ int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt)
      * are stable up to 2 / sqrt(lambda_max) of the motions it allows, and
      * the stiffest modes of M^-1 K (held particles of small mass, on the
      * edges of held faces) are not among them: Slope I's step 1.7 times
-     * the unconstrained estimate (docs/solver.md, "Speed"). P is
+     * the unconstrained estimate (docs/solver.md, "Time step"). P is
      * M-self-adjoint, so projecting the start and every new vector keeps
      * the recurrence. From a deterministic start with every mode present
      * (a hashed sequence); the Ritz values approach the largest eigenvalue
@@ -2168,8 +2173,7 @@ int gsn_explicit_settle(struct gsn_explicit *e)
     /* reactions and the kinetic energy; the external force of this state
      * starts the next trapezoid (no work: d does not move) */
     struct gsn_step_sums sums = step_loop(e, n, reactions_and_energies);
-    e->kinetic_energy = sums.kinetic;
-    e->conserved_kinetic_energy = sums.kinetic_conserved;
+    keep_kinetic(e, &sums);
     return GSN_OK;
 }
 

@@ -379,7 +379,7 @@ int gsn_explicit_step(struct gsn_explicit *e);
  * Lanczos in the mass inner product (deterministic start; the largest Ritz
  * value plus its residual bound). The local damping scales each
  * component's unbalanced force by a factor in [1 - a, 1 + a], the
- * stiffness by up to 1 + a (docs/solver.md, "Speed"). */
+ * stiffness by up to 1 + a (docs/solver.md, "Time step"). */
 int gsn_explicit_stable_step(struct gsn_explicit *e, double *dt);
 
 /* Resultant of the tractions on the boundary facets of model surface
