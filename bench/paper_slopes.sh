@@ -9,8 +9,10 @@
 # docs/solver.md "Rigid bodies"). INTEGRATION replaces the case's
 # integration (e.g. "{method: scni, stabilization: mscni}"); UPDATE sets
 # reference_update (e.g. "off" or "{strain: 0.2, min_steps: 20}");
-# WINDOW_CUT sets kernel.window_cut (docs/kernels.md, "Window cut").
-# Usage: [RIGID=1] [INTEGRATION=...] [UPDATE=...] [WINDOW_CUT=...] bench/paper_slopes.sh [BUILD_DIR] [OUT]
+# WINDOW_CUT sets kernel.window_cut (docs/kernels.md, "Window cut");
+# MASS_SCALING sets time.mass_scaling (docs/solver.md, "Mass scaling").
+# Usage: [RIGID=1] [INTEGRATION=...] [UPDATE=...] [WINDOW_CUT=...] [MASS_SCALING=...]
+#        bench/paper_slopes.sh [BUILD_DIR] [OUT]
 #        [FACTOR] [SETTLEMENT] [CASES]
 #        (default build, out/paper, 5, 1.0, "slope_I slope_II")
 set -eu
@@ -40,6 +42,7 @@ for name in $cases; do
     sed -e "s|^geometry: *|geometry: $root/geometries/|" \
         -e "s|velocity: \[null, null, -$speed\]|velocity: [null, null, -$v]$rigid|" \
         -e "s|^\( *end:\).*|\1 $end|" -e "s|^\( *step:\).*|\1 auto|" \
+        -e "${MASS_SCALING:+s|^\( *\)step:.*|&\n\1mass_scaling: $MASS_SCALING|}" \
         -e "s|^\( *every:\).*|\1 $every|" \
         -e "${integration:+s|^integration:.*|integration: $integration|}" \
         "$source_case"; } >"$case_file"

@@ -881,7 +881,8 @@ static int read_boundary(struct reader *r, const yaml_node_t *root,
 static int read_time(struct reader *r, const yaml_node_t *root,
                      struct gsn_case *c)
 {
-    static const char *const keys[] = {"end", "step", "safety", "ramp", NULL};
+    static const char *const keys[] = {"end",  "step",         "safety",
+                                       "ramp", "mass_scaling", NULL};
     yaml_node_t *node = NULL;
     GSN_CALL(require_key(r, root, "", "time",
                          "a mapping with 'end' (s) and 'step' (s or auto)",
@@ -912,6 +913,16 @@ static int read_time(struct reader *r, const yaml_node_t *root,
               "%s:%d: 'time.safety' must be in (0, 1] (fraction of the stable "
               "step), got %g",
               r->path, line, c->time_step_safety);
+    line = node_line(node);
+    GSN_CALL(read_number(r, node, "time", "mass_scaling", &c->time_mass_scaling,
+                         &line));
+    GSN_CHECK(c->time_mass_scaling >= 0.0 && c->time_mass_scaling <= 0.1,
+              GSN_ERR_INPUT,
+              "%s:%d: 'time.mass_scaling' must be in [0, 0.1]: the fraction "
+              "of the body's mass that may be added where the stable step "
+              "needs it (0.01 adds at most 1%%; for slow, quasi-static "
+              "loads), got %g",
+              r->path, line, c->time_mass_scaling);
     line = node_line(node);
     GSN_CALL(read_number(r, node, "time", "ramp", &c->time_ramp, &line));
     GSN_CHECK(c->time_ramp >= 0.0 && c->time_ramp <= c->time_end, GSN_ERR_INPUT,
@@ -1551,6 +1562,8 @@ int gsn_case_write_yaml(const struct gsn_case *c, FILE *out)
     else
         fprintf(out, "time: {end: %.17g, step: %.17g", c->time_end,
                 c->time_step);
+    if (c->time_mass_scaling > 0.0)
+        fprintf(out, ", mass_scaling: %.17g", c->time_mass_scaling);
     fprintf(out, ", ramp: %.17g}\n", c->time_ramp);
     fprintf(out, "damping: {local: %.17g}\n", c->damping_local);
     fprintf(out, "kinematics: %s\n", c->small_strain ? "small" : "large");

@@ -72,6 +72,8 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
         return;
     struct gsn_explicit *e = *handle;
     double *arrays[] = {e->mass,
+                        e->lumped_mass,
+                        e->particle_stiffness,
                         e->displacement,
                         e->velocity,
                         e->acceleration,
@@ -202,13 +204,107 @@ void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
  * or the Gauss points (Psi from their own rows); f_ext_I = m_I g. By the
  * partition of unity the masses add up to sum_p m_p, the body's mass, on
  * every reference configuration. */
+/* k_I = sum_L w_L (K + 4/3 G)_L |grad Psi_I(X_L)|^2 over the main points,
+ * N/m: the stiffness's diagonal block at particle I is at most this along
+ * any direction (eq. (32) linearized; a measure, not the stabilization's
+ * share). From the quadrature's gradient rows, which the caller frees once
+ * the loop has packed them (reference.c), so made at creation. */
+static int particle_stiffness(struct gsn_explicit *e)
+{
+    const struct gsn_shape_rows *g = &e->quadrature->gradient;
+    GSN_CHECK(g->gradient, GSN_ERR_INTERNAL,
+              "mass scaling needs the gradient rows");
+    GSN_CALL(alloc_array((void **)&e->particle_stiffness,
+                         (size_t)e->particle_count, sizeof(double)));
+    double *k = e->particle_stiffness;
+    for (int p = 0; p < e->main_point_count; ++p) {
+        int m = e->point_material[p];
+        double modulus = e->quadrature->point_weight[p] *
+                         (e->bulk_modulus[m] + 4.0 / 3.0 * e->shear_modulus[m]);
+        for (int j = g->offset[p]; j < g->offset[p + 1]; ++j) {
+            const double *d = &g->gradient[3 * (size_t)j];
+            k[g->index[j]] +=
+                modulus * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        }
+    }
+    return GSN_OK;
+}
+
+struct mass_ratio {
+    double ratio; /* m_I / k_I, s^2 */
+    int particle;
+};
+
+static int by_ratio(const void *a, const void *b)
+{
+    const struct mass_ratio *x = a, *y = b;
+    if (x->ratio != y->ratio)
+        return x->ratio < y->ratio ? -1 : 1;
+    return x->particle - y->particle;
+}
+
+/* Mass scaling (time.mass_scaling = F): the particles whose lumped mass is
+ * small against their stiffness (cells cut by the body's edges and
+ * corners) set the stable step; each gets m_I' = max(m_I, s k_I)
+ * (particle_stiffness), s the largest for which the added mass is F times
+ * the body's. Between two consecutive ratios t_j = m_j / k_j (ascending)
+ * the added mass is s K_j - M_j (K_j, M_j the sums of k and m up to j),
+ * linear in s. The stable step then comes from Lanczos on the new masses. */
+static int scale_masses(struct gsn_explicit *e)
+{
+    const int n = e->particle_count;
+    e->mass_scaled_count = 0;
+    e->mass_scaled_largest = 1.0;
+    if (!(e->mass_scaling > 0.0))
+        return GSN_OK;
+    if (!e->particle_stiffness)
+        GSN_CALL(particle_stiffness(e));
+    const double *k = e->particle_stiffness;
+    struct mass_ratio *order = NULL;
+    GSN_CALL(alloc_array((void **)&order, (size_t)n, sizeof *order));
+    double body = 0.0;
+    int stiff = 0;
+    for (int i = 0; i < n; ++i) {
+        body += e->mass[i];
+        if (k[i] > 0.0)
+            order[stiff++] = (struct mass_ratio){e->mass[i] / k[i], i};
+    }
+    qsort(order, (size_t)stiff, sizeof *order, by_ratio);
+    const double budget = e->mass_scaling * body;
+    double K = 0.0, M = 0.0, s = 0.0;
+    int count = 0;
+    while (count < stiff) {
+        K += k[order[count].particle];
+        M += e->mass[order[count].particle];
+        ++count;
+        double next = count < stiff ? order[count].ratio : INFINITY;
+        if (next * K - M >= budget) {
+            s = (budget + M) / K;
+            break;
+        }
+    }
+    for (int j = 0; j < count; ++j) {
+        int i = order[j].particle;
+        double scaled = s * k[i];
+        if (scaled > e->mass[i]) {
+            e->mass_scaled_largest =
+                fmax(e->mass_scaled_largest, scaled / e->mass[i]);
+            e->mass[i] = scaled;
+            e->mass_scaled_count++;
+        }
+    }
+    free(order);
+    return GSN_OK;
+}
+
 static int build_mass(struct gsn_explicit *e)
 {
     const struct gsn_quadrature *q = e->quadrature;
     GSN_CHECK(q->particle_values.row_count == e->particle_count &&
                   q->particle_values.value,
               GSN_ERR_INTERNAL, "shape values are not one row per particle");
-    memset(e->mass, 0, sizeof(double) * (size_t)e->particle_count);
+    double *lumped = e->lumped_mass;
+    memset(lumped, 0, sizeof(double) * (size_t)e->particle_count);
     for (int p = 0; p < e->main_point_count; ++p) {
         int particle = q->point_particle[p];
         const struct gsn_shape_rows *values =
@@ -217,20 +313,22 @@ static int build_mass(struct gsn_explicit *e)
         GSN_CHECK(values->value, GSN_ERR_INTERNAL,
                   "no shape values at integration point %d", p);
         for (int k = values->offset[row]; k < values->offset[row + 1]; ++k)
-            e->mass[values->index[k]] += values->value[k] * e->point_mass[p];
+            lumped[values->index[k]] += values->value[k] * e->point_mass[p];
     }
     for (int i = 0; i < e->particle_count; ++i) {
-        GSN_CHECK(e->mass[i] > 0.0 && isfinite(e->mass[i]), GSN_ERR_NUMERICAL,
+        GSN_CHECK(lumped[i] > 0.0 && isfinite(lumped[i]), GSN_ERR_NUMERICAL,
                   "the lumped mass of particle %d at (%g, %g, %g) is %g kg, "
                   "not positive: the kernel support is too small or too "
                   "large for the particle spacing",
                   i, q->rk->position[3 * i], q->rk->position[3 * i + 1],
-                  q->rk->position[3 * i + 2], e->mass[i]);
+                  q->rk->position[3 * i + 2], lumped[i]);
         for (int k = 0; k < 3; ++k) {
-            e->f_ext_full[3 * i + k] = e->mass[i] * e->gravity[k];
+            e->f_ext_full[3 * i + k] = lumped[i] * e->gravity[k];
             e->f_ext[3 * i + k] = e->load_factor * e->f_ext_full[3 * i + k];
         }
     }
+    memcpy(e->mass, lumped, sizeof(double) * (size_t)e->particle_count);
+    GSN_CALL(scale_masses(e));
     /* the projection is mass-orthogonal: S = C M^-1 C^T with these */
     if (e->constraints)
         GSN_CALL(gsn_constraints_set_mass(e->constraints, e->mass));
@@ -442,6 +540,7 @@ int gsn_explicit_create(const struct gsn_model *m,
     }
     e->dt = dt;
     e->damping_local = c->damping_local;
+    e->mass_scaling = c->time_mass_scaling;
     e->small_strain = c->small_strain;
     e->held_axis = c->plane_strain_axis;
     memcpy(e->gravity, c->gravity, sizeof e->gravity);
@@ -455,6 +554,7 @@ int gsn_explicit_create(const struct gsn_model *m,
         size_t count, size;
     } arrays[] = {
         {(void **)&e->mass, n3 / 3, sizeof(double)},
+        {(void **)&e->lumped_mass, n3 / 3, sizeof(double)},
         {(void **)&e->displacement, n3, sizeof(double)},
         {(void **)&e->velocity, n3, sizeof(double)},
         {(void **)&e->acceleration, n3, sizeof(double)},
@@ -2454,7 +2554,9 @@ int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
                  : gsn_error_raise(GSN_ERR_MEMORY, __FILE__, __LINE__, __func__,
                                    "cannot allocate %d values", 20 * n);
     double *diagonal = work, *W = diagonal + n, *scratch = W + n;
-    struct interpolation_weights weights = {W, e->mass};
+    /* M = Lambda^T W 1 holds for the lumped masses, not with the mass that
+     * mass scaling adds */
+    struct interpolation_weights weights = {W, e->lumped_mass};
     int most = 0;
     if (rc == GSN_OK) {
         memset(W, 0, sizeof(double) * (size_t)n);
@@ -2466,7 +2568,8 @@ int gsn_explicit_interpolate(const struct gsn_explicit *e, const double *values,
             for (int k = columns.offset[I]; k < columns.offset[I + 1]; ++k)
                 sum +=
                     W[columns.index[k]] * columns.value[k] * columns.value[k];
-            diagonal[I] = sum + GSN_INTERPOLATE_REGULARIZATION * e->mass[I];
+            diagonal[I] =
+                sum + GSN_INTERPOLATE_REGULARIZATION * e->lumped_mass[I];
         }
         double residual = 0.0;
         int failed = -1;

@@ -95,20 +95,29 @@ struct gsn_explicit {
     double time_base;
     long step_base;
 
-    double *mass;         /* n, kg */
-    double *displacement; /* n x 3 coefficients d_I, m */
-    double *velocity;     /* n x 3, m/s */
-    double *acceleration; /* n x 3, m/s^2 */
-    double *f_ext;        /* n x 3 external force of the step, N: the
-                             dead loads times load_factor */
-    double *f_ext_full;   /* n x 3 dead loads (body force, tractions) at
-                             full value, N */
-    double load_factor;   /* of the dead loads (time.ramp), 1 at full */
-    double *f_int;        /* n x 3 internal force, N */
-    double *reaction;     /* n x 3: C^T lambda, the force the supports
-                             apply (constraint.h), 0 where they reach not */
-    double *stress;       /* points x 6, Pa (nominal Cauchy) */
-    double *state;        /* main points x state_size */
+    double *mass;               /* n, kg: the lumped masses, with the mass that
+                                   mass scaling adds (time.mass_scaling) */
+    double *lumped_mass;        /* n, kg: the lumped masses alone, which the
+                                   body force and the body's mass take */
+    double mass_scaling;        /* the fraction of the body's mass that mass
+                                   scaling may add (case time.mass_scaling) */
+    double *particle_stiffness; /* n, N/m: mass scaling's measure k_I
+                                   (explicit.c), NULL without it */
+    int mass_scaled_count;      /* particles given added mass */
+    double mass_scaled_largest; /* the largest m_I' / m_I */
+    double *displacement;       /* n x 3 coefficients d_I, m */
+    double *velocity;           /* n x 3, m/s */
+    double *acceleration;       /* n x 3, m/s^2 */
+    double *f_ext;              /* n x 3 external force of the step, N: the
+                                   dead loads times load_factor */
+    double *f_ext_full;         /* n x 3 dead loads (body force, tractions) at
+                                   full value, N */
+    double load_factor;         /* of the dead loads (time.ramp), 1 at full */
+    double *f_int;              /* n x 3 internal force, N */
+    double *reaction;           /* n x 3: C^T lambda, the force the supports
+                                   apply (constraint.h), 0 where they reach not */
+    double *stress;             /* points x 6, Pa (nominal Cauchy) */
+    double *state;              /* main points x state_size */
 
     double kinetic_energy, internal_energy, external_work; /* J */
     /* 1/2 v_{n-1/2} M v_{n+1/2} = 1/2 v M v - dt^2/8 a M a: with W_int what

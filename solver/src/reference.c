@@ -188,7 +188,8 @@ enum gsn_reference_reason gsn_reference_due(const struct gsn_reference *r)
 }
 
 /* Mass and momentum of a loop's lumped masses and velocity coefficients
- * (sum m, sum m v, sum m |v|). */
+ * (sum m, sum m v, sum m |v|): the body's, which mass scaling's added mass
+ * is not part of. */
 static void mass_momentum(const struct gsn_explicit *e, double *mass,
                           double momentum[3], double *scale)
 {
@@ -196,10 +197,11 @@ static void mass_momentum(const struct gsn_explicit *e, double *mass,
     momentum[0] = momentum[1] = momentum[2] = 0.0;
     for (int i = 0; i < e->particle_count; ++i) {
         const double *v = &e->velocity[3 * i];
-        *mass += e->mass[i];
+        const double m = e->lumped_mass[i];
+        *mass += m;
         for (int k = 0; k < 3; ++k)
-            momentum[k] += e->mass[i] * v[k];
-        *scale += e->mass[i] * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+            momentum[k] += m * v[k];
+        *scale += m * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     }
 }
 

@@ -876,6 +876,12 @@ static int choose_time_step(struct run *r)
     if (e->damping_local > 0.0)
         snprintf(damped, sizeof damped, " and the damping (local %g)",
                  e->damping_local);
+    if (e->mass_scaled_count > 0 && !r->options->quiet)
+        printf("mass scaling: %.3g%% of the body's mass added to %d "
+               "particles (%.2g%%), up to %.3g times their own\n",
+               100.0 * c->time_mass_scaling, e->mass_scaled_count,
+               100.0 * e->mass_scaled_count / e->particle_count,
+               e->mass_scaled_largest);
     if (c->time_step_auto) {
         e->dt = c->time_step_safety * stable;
         if (!r->options->quiet)
