@@ -916,6 +916,7 @@ static int read_time(struct reader *r, const yaml_node_t *root,
     line = node_line(node);
     GSN_CALL(read_number(r, node, "time", "mass_scaling", &c->time_mass_scaling,
                          &line));
+    c->time_mass_scaling_given = mapping_find(r, node, "mass_scaling") != NULL;
     GSN_CHECK(c->time_mass_scaling >= 0.0 && c->time_mass_scaling <= 0.1,
               GSN_ERR_INPUT,
               "%s:%d: 'time.mass_scaling' must be in [0, 0.1]: the fraction "

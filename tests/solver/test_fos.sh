@@ -23,6 +23,8 @@
 #   call stopped by SIGTERM in a trial continues from the trials done;
 # - the mechanism: OUTDIR/mechanism holds the ParaView files of the lowest
 #   failed factor;
+# - mass scaling by default (docs/fos.md): said, and in fos.csv's first
+#   line;
 # - errors: no gravity, the cone given as alpha and R, a rigid body: exit 2
 #   naming what to change.
 . ./cli_testing.sh
@@ -43,6 +45,11 @@ awk -F, -v tol=0.01 'NR == 2 { for (k = 1; k <= NF; ++k) c[$k] = k }
      END { printf "fos.csv: %d trials, stands at %.4f, fails at %.4f\n", n, low, high
            exit !(n >= 4 && high > low && high - low <= tol * (1 + 1e-9) && late == 0) }' \
     "$out/gl/fos.csv" || fail "fos.csv: no bracket of width 0.01, or a failed trial used its whole budget"
+# mass scaling by default (the case sets none), said and recorded
+grep -q "^fos: 1% of the body's mass added where the stable step is set" "$out/gl.log" ||
+    fail "fos does not say it scales the masses"
+head -1 "$out/gl/fos.csv" | grep -qE ", mass_scaling 0.01(,|$)" ||
+    fail "fos.csv's first line does not record the mass scaling"
 [ -f "$out/gl/mechanism/gl_slope.pvd" ] && [ -f "$out/gl/mechanism/vtu/frame_0000.vtu" ] ||
     fail "no ParaView files of the mechanism in $out/gl/mechanism"
 

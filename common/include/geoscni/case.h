@@ -224,14 +224,16 @@ struct gsn_case {
     double gravity[3]; /* m/s^2 */
     int boundary_count;
     struct gsn_boundary boundaries[GSN_MAX_BOUNDARIES];
-    double time_end;          /* s */
-    int time_step_auto;       /* step: auto */
-    double time_step;         /* s, when not auto */
-    double time_step_safety;  /* fraction of the stable step, auto only */
-    double time_mass_scaling; /* fraction of the body's mass that mass
-                                 scaling may add (0: none) */
-    double time_ramp;         /* s over which prescribed velocities rise
-                                 smoothly from 0 (0: at once) */
+    double time_end;             /* s */
+    int time_step_auto;          /* step: auto */
+    double time_step;            /* s, when not auto */
+    double time_step_safety;     /* fraction of the stable step, auto only */
+    double time_mass_scaling;    /* fraction of the body's mass that mass
+                                    scaling may add (0: none) */
+    int time_mass_scaling_given; /* the case file sets it (fos's default
+                                    applies otherwise) */
+    double time_ramp;            /* s over which prescribed velocities rise
+                                    smoothly from 0 (0: at once) */
     double damping_local;  /* Cundall's local damping coefficient (0: none) */
     int small_strain;      /* kinematics: small (no geometry update) */
     int plane_strain_axis; /* plane_strain: x, y or z (0, 1, 2): the
