@@ -247,9 +247,11 @@ static int by_ratio(const void *a, const void *b)
  * small against their stiffness (cells cut by the body's edges and
  * corners) set the stable step; each gets m_I' = max(m_I, s k_I)
  * (particle_stiffness), s the largest for which the added mass is F times
- * the body's. Between two consecutive ratios t_j = m_j / k_j (ascending)
- * the added mass is s K_j - M_j (K_j, M_j the sums of k and m up to j),
- * linear in s. The stable step then comes from Lanczos on the new masses. */
+ * the body's. Particles whose three components the constraints hold get
+ * none (Slope I: 2% more step at 0.1%, the largest factor 12.2 -> 6.9). Between
+ * two consecutive ratios t_j = m_j / k_j (ascending) the added mass is s K_j -
+ * M_j (K_j, M_j the sums of k and m up to j), linear in s. The stable step then
+ * comes from Lanczos on the new masses. */
 static int scale_masses(struct gsn_explicit *e)
 {
     const int n = e->particle_count;
@@ -264,8 +266,11 @@ static int scale_masses(struct gsn_explicit *e)
     GSN_CALL(alloc_array((void **)&order, (size_t)n, sizeof *order));
     double body = 0.0;
     int stiff = 0;
+    const unsigned held_axis = e->held_axis >= 0 ? 1u << e->held_axis : 0u;
     for (int i = 0; i < n; ++i) {
         body += e->mass[i];
+        if ((e->constrained[i] | held_axis) == 7u)
+            continue; /* held: the constraints move it, not its mass */
         if (k[i] > 0.0)
             order[stiff++] = (struct mass_ratio){e->mass[i] / k[i], i};
     }

@@ -3,8 +3,8 @@
  * main points of its two particles nearest the top corner ten times
  * lighter (as a particle whose cell the boundary cuts to a sliver is):
  * those two set the stable step. With 1% of the mass to add,
- * - the added mass is that fraction of the body's to round-off, and no
- *   particle loses mass;
+ * - the added mass is that fraction of the body's to round-off, no
+ *   particle loses mass, and the base's (held) particles get none;
  * - the lumped masses and the body force are those of the unscaled block,
  *   bit for bit (the weight is the body's, not the scaled mass's);
  * - the stable step is back to that of the block without light particles:
@@ -121,6 +121,15 @@ int main(void)
     /* the sums of 216 terms of one sign: a few ulps of the fraction */
     TEST_NEAR(added / body, 0.01, 1e-14);
     TEST_INT(losing, 0);
+    /* the base's particles, all three components held, get none */
+    int held = 0, held_raised = 0;
+    for (int i = 0; i < n; ++i)
+        if (e->constrained[i] == 7u) {
+            held++;
+            held_raised += e->mass[i] != e->lumped_mass[i];
+        }
+    TEST_TRUE(held > 0);
+    TEST_INT(held_raised, 0);
     TEST_INT(raised, e->mass_scaled_count);
     TEST_TRUE(raised > 0 && raised < n);
     TEST_TRUE(memcmp(e->lumped_mass, plain.loop->lumped_mass,
