@@ -29,7 +29,7 @@
 #define FOS_LOWEST 0.05
 #define FOS_HIGHEST 20.0
 #define FOS_TOLERANCE 0.01
-/* time.mass_scaling where the case sets none: 2.6 times fewer steps on
+/* time.mass_scaling where the case sets none: 2.8 times fewer steps on
  * Griffiths & Lane's slope, the same factor and verdicts (docs/fos.md) */
 #define FOS_MASS_SCALING 0.01
 enum { FOS_MAX_TRIALS = 64 };
