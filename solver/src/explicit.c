@@ -198,12 +198,6 @@ void gsn_explicit_surface_force(const struct gsn_explicit *e, int surface,
     }
 }
 
-/* m_I = sum_p Psi_I(x_p) m_p over the main points (eq. (28) with the mass
- * m_p = rho0 w_p that point p carries from the first reference
- * configuration): the nodal points (x_p = X_L; Psi from particle_values)
- * or the Gauss points (Psi from their own rows); f_ext_I = m_I g. By the
- * partition of unity the masses add up to sum_p m_p, the body's mass, on
- * every reference configuration. */
 /* k_I = sum_L w_L (K + 4/3 G)_L |grad Psi_I(X_L)|^2 over the main points,
  * N/m: the stiffness's diagonal block at particle I is at most this along
  * any direction (eq. (32) linearized; a measure, not the stabilization's
@@ -243,15 +237,15 @@ static int by_ratio(const void *a, const void *b)
     return x->particle - y->particle;
 }
 
-/* Mass scaling (time.mass_scaling = F): the particles whose lumped mass is
- * small against their stiffness (cells cut by the body's edges and
- * corners) set the stable step; each gets m_I' = max(m_I, s k_I)
- * (particle_stiffness), s the largest for which the added mass is F times
- * the body's. Particles whose three components the constraints hold get
- * none (Slope I: 2% more step at 0.1%, the largest factor 12.2 -> 6.9). Between
- * two consecutive ratios t_j = m_j / k_j (ascending) the added mass is s K_j -
- * M_j (K_j, M_j the sums of k and m up to j), linear in s. The stable step then
- * comes from Lanczos on the new masses. */
+/* Mass scaling (time.mass_scaling = F; docs/solver.md "Mass scaling"): the
+ * particles whose lumped mass is small against their stiffness (cells cut
+ * by the body's edges and corners) set the stable step; each gets
+ * m_I' = max(m_I, s k_I) (particle_stiffness), s the largest for which the
+ * added mass is F times the body's. Between two consecutive ratios
+ * t_j = m_j / k_j (ascending) the added mass is s K_j - M_j (K_j, M_j the
+ * sums of k and m up to j), linear in s. Particles whose three components
+ * the constraints hold get none. The stable step then comes from Lanczos
+ * on the new masses. */
 static int scale_masses(struct gsn_explicit *e)
 {
     const int n = e->particle_count;
@@ -302,6 +296,13 @@ static int scale_masses(struct gsn_explicit *e)
     return GSN_OK;
 }
 
+/* m_I = sum_p Psi_I(x_p) m_p over the main points (eq. (28) with the mass
+ * m_p = rho0 w_p that point p carries from the first reference
+ * configuration): the nodal points (x_p = X_L; Psi from particle_values)
+ * or the Gauss points (Psi from their own rows); f_ext_I = m_I g. By the
+ * partition of unity the masses add up to sum_p m_p, the body's mass, on
+ * every reference configuration. These are lumped_mass; mass, the loop's,
+ * adds mass scaling's share (scale_masses). */
 static int build_mass(struct gsn_explicit *e)
 {
     const struct gsn_quadrature *q = e->quadrature;
