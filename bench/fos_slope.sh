@@ -7,7 +7,10 @@
 # (pre, trials, the mechanism's post); the goal is under 10 minutes on 2
 # cores. References: 1.38 (Bishop & Morgenstern's charts), 1.4 (Griffiths &
 # Lane's finite elements); docs/fos.md.
-# Usage: bench/fos_slope.sh [BUILD_DIR] [OUT] [SPACING]
+# MASS_SCALING=F sets the case's time.mass_scaling (fos's default, when the
+# case sets none, is 0.01; MASS_SCALING=0 runs the study without it); the
+# last line adds the steps and wall time of the trials (fos.csv).
+# Usage: [MASS_SCALING=F] bench/fos_slope.sh [BUILD_DIR] [OUT] [SPACING]
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-build}
@@ -20,10 +23,14 @@ mkdir -p "$out"
 case=$out/slope_gl_$spacing.yaml
 sed -e "s|^geometry: *|geometry: $root/geometries/|" \
     -e "s|^  spacing: .*|  spacing: $spacing|" \
+    -e "${MASS_SCALING:+s|^\( *\)step:.*|&\n\1mass_scaling: $MASS_SCALING|}" \
     "$root/geometries/slope_gl.yaml" >"$case"
 start=$(date +%s.%N)
 "$geoscni" fos "$case" -o "$out/fos_$spacing" --rerun -j "$threads" | grep -v "^pre:"
 end=$(date +%s.%N)
 particles=$(/usr/bin/python3 -c "import h5py; print(h5py.File('$out/fos_$spacing/model.h5')['particles/position'].shape[0])")
-awk -v s="$start" -v e="$end" -v n="$particles" -v t="$threads" -v h="$spacing" \
-    'BEGIN { printf "fos_slope: spacing %s m, %d particles, %d threads: %.0f s for the whole study\n", h, n, t, e - s }'
+trials=$(awk -F, 'NR == 2 { for (k = 1; k <= NF; ++k) c[$k] = k }
+    NR > 2 { n += $c["steps"]; w += $c["wall_s"] } END { printf "%d steps, %.0f s", n, w }' \
+    "$out/fos_$spacing/fos.csv")
+awk -v s="$start" -v e="$end" -v n="$particles" -v t="$threads" -v h="$spacing" -v trials="$trials" \
+    'BEGIN { printf "fos_slope: spacing %s m, %d particles, %d threads: %.0f s for the whole study (the trials: %s)\n", h, n, t, e - s, trials }'
