@@ -283,6 +283,30 @@ static inline int fixture_solver_from_gmsh(const struct gsn_case *c, double dt,
     return fixture_solver_from_model(c, dt, s);
 }
 
+/* GSN_OK if `steps` steps of e from small random velocities (every mode
+ * excited; a fixed sequence) keep the kinetic energy below 1e6 times its
+ * initial value, GSN_ERR_NUMERICAL otherwise: the stable-step tests' run
+ * (test_critical_step, test_mass_scaling). Clears the error of a blow-up. */
+static inline int fixture_stays_bounded(struct gsn_explicit *e, int steps)
+{
+    unsigned state = 7u;
+    for (int i = 0; i < 3 * e->particle_count; ++i) {
+        state = state * 1664525u + 1013904223u;
+        e->velocity[i] = 1e-3 * ((double)(state >> 8) / 16777216.0 - 0.5);
+    }
+    double initial = 0.0;
+    for (int i = 0; i < 3 * e->particle_count; ++i)
+        initial += 0.5 * e->mass[i / 3] * e->velocity[i] * e->velocity[i];
+    int rc = GSN_OK;
+    for (int k = 0; k < steps && rc == GSN_OK; ++k) {
+        rc = gsn_explicit_step(e);
+        if (rc == GSN_OK && !(e->kinetic_energy < 1e6 * initial))
+            rc = GSN_ERR_NUMERICAL;
+    }
+    gsn_error_clear();
+    return rc;
+}
+
 /* The frequency (Hz) of a signal value(time), count samples, from its
  * upward crossings of level (linear between samples): (crossings - 1)
  * over the time from the first to the last; *periods gets crossings - 1.
