@@ -729,10 +729,11 @@ void gsn_explicit_add_water_pressure(struct gsn_explicit *e,
 }
 
 /* Small-strain elastic stress of the strain eps (Voigt, tensor shear). */
-static void elastic_stress(double bulk, double shear, const double eps[6],
-                           double sigma[6])
+__attribute__((always_inline)) static inline void
+elastic_stress(double bulk, double shear, const double eps[6], double sigma[6])
 {
     double volumetric = (bulk - 2.0 * shear / 3.0) * gsn_voigt_trace(eps);
+#pragma GCC unroll 6
     for (int a = 0; a < 6; ++a)
         sigma[a] = 2.0 * shear * eps[a] + (a < 3 ? volumetric : 0.0);
 }
@@ -846,8 +847,9 @@ static inline void row_gradient(const struct gsn_point_blocks *b, int r,
  * (point_blocks.h: d11 d22 d33 d12 d23 d13). */
 static inline int hessian_pair(int j, int k)
 {
-    static const int pair[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
-    return pair[j][k];
+    /* {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}} without a table: constants once
+     * unrolled, where the vectorizer cannot load from a table */
+    return j == k ? j : 3 + (j + k == 3) + 2 * (j + k == 2);
 }
 
 /* A fused row r (NSNI, point_blocks.h): dH of the nodal point as
@@ -897,24 +899,33 @@ static inline void fused_row_gradient(const struct gsn_point_blocks *b, int r,
 }
 
 /* dH_k (9) of stabilization point k from a fused row's A. */
-static void fused_point_gradient(const double A[18], int k, double dH[9])
+__attribute__((always_inline)) static inline void
+fused_point_gradient(const double *A, size_t stride, int k, double dH[9])
 {
+#pragma GCC unroll 3
     for (int i = 0; i < 3; ++i)
+#pragma GCC unroll 3
         for (int j = 0; j < 3; ++j)
-            dH[3 * i + j] = A[3 * hessian_pair(k, j) + i];
+            dH[3 * i + j] = A[(size_t)(3 * hessian_pair(k, j) + i) * stride];
 }
 
-/* The coefficients C[3 c + i] of the six second derivatives in the force
- * of the three stabilization points with P_k = P[9 k ..] (row-major):
- * f_Ii += sum_k sum_j P_k[i][j] d_k d_j Psi_I = sum_c C[3 c + i] d_c Psi_I. */
-static void fused_force_coefficients(const double P[27], double C[18])
+/* The coefficients C[3 c + i] (at C[(3 c + i) stride]) of the six second
+ * derivatives in the force of the three stabilization points with P_k
+ * (row-major): f_Ii += sum_k sum_j P_k[i][j] d_k d_j Psi_I
+ * = sum_c C[3 c + i] d_c Psi_I, c = hessian_pair(j, k). */
+__attribute__((always_inline)) static inline void
+fused_force_coefficients(const double P0[9], const double P1[9],
+                         const double P2[9], double *C, size_t stride)
 {
-    for (int j = 0; j < 3; ++j)
-        for (int k = j; k < 3; ++k)
-            for (int i = 0; i < 3; ++i)
-                C[3 * hessian_pair(j, k) + i] =
-                    j == k ? P[9 * k + 3 * i + k]
-                           : P[9 * k + 3 * i + j] + P[9 * j + 3 * i + k];
+#pragma GCC unroll 3
+    for (int i = 0; i < 3; ++i) {
+        C[(size_t)i * stride] = P0[3 * i];                            /* d11 */
+        C[(size_t)(3 + i) * stride] = P1[3 * i + 1];                  /* d22 */
+        C[(size_t)(6 + i) * stride] = P2[3 * i + 2];                  /* d33 */
+        C[(size_t)(9 + i) * stride] = P1[3 * i] + P0[3 * i + 1];      /* d12 */
+        C[(size_t)(12 + i) * stride] = P2[3 * i + 1] + P1[3 * i + 2]; /* d23 */
+        C[(size_t)(15 + i) * stride] = P2[3 * i] + P0[3 * i + 2];     /* d13 */
+    }
 }
 
 /* force_slot += P g_I over entries [k, end) (eq. (29) with
@@ -942,10 +953,11 @@ static inline void row_scatter(const struct gsn_point_blocks *b, int r,
 }
 
 /* A fused row r: the nodal point's P g_I and, on its first entries, the
- * stabilization points' sum_c C_c d_c Psi_I (fused_force_coefficients). */
+ * stabilization points' sum_c C_c d_c Psi_I (fused_force_coefficients; C[a]
+ * at C[a stride]). */
 static inline void fused_row_scatter(const struct gsn_point_blocks *b, int r,
-                                     const double P[9], const double C[18],
-                                     double *restrict f4)
+                                     const double P[9], const double *C,
+                                     size_t stride, double *restrict f4)
 {
     const uint16_t *restrict slot = b->entry_slot;
     const double *restrict g = b->entry_gradient;
@@ -958,7 +970,9 @@ static inline void fused_row_scatter(const struct gsn_point_blocks *b, int r,
     const gsn_v4 p2 = {P[2], P[5], P[8], 0.0};
     gsn_v4 q[6];
     for (int c = 0; c < 6; ++c)
-        q[c] = (gsn_v4){C[3 * c], C[3 * c + 1], C[3 * c + 2], 0.0};
+        q[c] = (gsn_v4){C[(size_t)(3 * c) * stride],
+                        C[(size_t)(3 * c + 1) * stride],
+                        C[(size_t)(3 * c + 2) * stride], 0.0};
     for (int k = k0; k < middle; ++k, d += 6) {
         gsn_v4 *f = (gsn_v4 *)&f4[4 * slot[k]];
         *f += p0 * g[3 * k] + p1 * g[3 * k + 1] + p2 * g[3 * k + 2] +
@@ -1228,9 +1242,11 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
 
 /* sigma w as a 3x3 matrix: the P of a stabilization point (small strain on
  * the reference configuration). */
-static void elastic_piola(const double sigma[6], double w, double P[9])
+__attribute__((always_inline)) static inline void
+elastic_piola(const double sigma[6], double w, double P[9])
 {
     gsn_voigt_to_matrix(sigma, P);
+#pragma GCC unroll 9
     for (int a = 0; a < 9; ++a)
         P[a] *= w;
 }
@@ -1260,24 +1276,114 @@ static void subcell_scatter(const struct gsn_point_blocks *b, int r,
  * part stays elastic (a flowing particle keeps its bulk stiffness; with
  * the whole rate scaled, particles at the faces of a pressed soil block
  * collapse to det F 0.03, tests/solver/test_checkerboard.c). */
+__attribute__((always_inline)) static inline void
+stabilization_update(int relative, double bulk, double shear, double share,
+                     const double dH[9], const double old[6], double w,
+                     double sigma[6], double *energy)
+{
+    double deps[6], rate[6], mean[6];
+    gsn_matrix_sym_to_voigt(dH, deps);
+    elastic_stress(bulk, relative ? shear : share * shear, deps, rate);
+    double scale = relative ? share : 1.0;
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a)
+        sigma[a] = old[a] + scale * rate[a];
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a)
+        mean[a] = 0.5 * (old[a] + sigma[a]);
+    *energy = voigt_contract(mean, deps) * w;
+}
+
+/* stabilization_update of point p into e->stress and e->point_energy. */
 static inline void stabilization_stress(struct gsn_explicit *e, int L, int p,
                                         const double dH[9], double share,
                                         double sigma[6])
 {
-    const int relative = e->blocks->relative;
-    double w = e->quadrature->point_weight[p];
-    double deps[6], rate[6], mean[6];
-    gsn_matrix_sym_to_voigt(dH, deps);
-    double bulk = e->bulk_modulus[e->point_material[L]],
-           shear = e->shear_modulus[e->point_material[L]];
-    elastic_stress(bulk, relative ? shear : share * shear, deps, rate);
-    double scale = relative ? share : 1.0;
-    for (int a = 0; a < 6; ++a)
-        sigma[a] = e->stress[6 * p + a] + scale * rate[a];
-    for (int a = 0; a < 6; ++a)
-        mean[a] = 0.5 * (e->stress[6 * p + a] + sigma[a]);
+    stabilization_update(
+        e->blocks->relative, e->bulk_modulus[e->point_material[L]],
+        e->shear_modulus[e->point_material[L]], share, dH, &e->stress[6 * p],
+        e->quadrature->point_weight[p], sigma, &e->point_energy[p]);
     memcpy(&e->stress[6 * p], sigma, 6 * sizeof(double));
-    e->point_energy[p] = voigt_contract(mean, deps) * w;
+}
+
+/* Stabilization point s of a nodal point on columns (fused_stabilization):
+ * its stress and work, and the P of its stress (0 on a failed point, whose
+ * stress is 0; a row without second derivatives does not use it). */
+__attribute__((always_inline)) static inline void
+stabilization_column(int on, int s, const double *A, double *stress,
+                     const double *w, double *energy, double bulk, double shear,
+                     double share, double P[9])
+{
+    double dH[9], old[6], sigma[6], work;
+#pragma GCC unroll 6
+    for (int i = 0; i < 6; ++i)
+        old[i] = stress[(6 * s + i) * CHUNK];
+    fused_point_gradient(A, CHUNK, s, dH);
+    stabilization_update(0, bulk, shear, share, dH, old, w[s * CHUNK], sigma,
+                         &work);
+#pragma GCC unroll 6
+    for (int i = 0; i < 6; ++i) {
+        sigma[i] = on ? sigma[i] : old[i];
+        stress[(6 * s + i) * CHUNK] = sigma[i];
+    }
+    energy[s * CHUNK] = on ? work : 0.0;
+    elastic_piola(sigma, w[s * CHUNK], P);
+}
+
+/* The three stabilization points of a nodal point on columns, and their
+ * force coefficients in A's place (fused_stabilization). The points are
+ * written out (GCC leaves a loop over them rolled, and then does not
+ * vectorize the loop over nodal points), and the arrays are this
+ * function's (declared in the loop body, they become per-lane arrays the
+ * vectorizer cannot store to). */
+__attribute__((always_inline)) static inline void
+stabilization_columns(int on, double *A, double *stress, const double *w,
+                      double *energy, double bulk, double shear, double share)
+{
+    double P0[9], P1[9], P2[9];
+    stabilization_column(on, 0, A, stress, w, energy, bulk, shear, share, P0);
+    stabilization_column(on, 1, A, stress, w, energy, bulk, shear, share, P1);
+    stabilization_column(on, 2, A, stress, w, energy, bulk, shear, share, P2);
+    fused_force_coefficients(P0, P1, P2, A, CHUNK);
+}
+
+/* NSNI's three stabilization points of each nodal point of [p0, p1) on
+ * columns (as main_chunk, so that the loop over points vectorizes): the
+ * increments from the fused rows' sums A (fused_point_gradient), their
+ * stresses and work (stabilization_stress's arithmetic), and in A's place
+ * the force coefficients C of fused_coefficients in columns Ac (stride
+ * CHUNK), which the scatter reads there. A failed point, or one whose row
+ * has no second derivatives, keeps its stresses and does no work. */
+static void fused_stabilization(struct gsn_explicit *e, int k, int p0, int p1,
+                                const double *share, const double *A,
+                                double *Ac, double *work)
+{
+    const struct gsn_point_blocks *b = e->blocks;
+    const int n = p1 - p0;
+    const size_t s0 = (size_t)e->main_point_count + 3 * (size_t)p0;
+    double *stress = work, *w = stress + 18 * CHUNK;
+    gsn_material_to_columns((size_t)n, 18, A, 18, Ac, CHUNK);
+    double *energy = w + 3 * CHUNK, *bulk = energy + 3 * CHUNK;
+    double *shear = bulk + CHUNK, *live = shear + CHUNK;
+    gsn_material_to_columns((size_t)n, 18, &e->stress[6 * s0], 18, stress,
+                            CHUNK);
+    gsn_material_to_columns((size_t)n, 3, &e->quadrature->point_weight[s0], 3,
+                            w, CHUNK);
+    for (int L = p0; L < p1; ++L) {
+        int r = gsn_point_blocks_main_row(b, k, L);
+        bulk[L - p0] = e->bulk_modulus[e->point_material[L]];
+        shear[L - p0] = e->shear_modulus[e->point_material[L]];
+        live[L - p0] = !e->point_dead[L] &&
+                       b->row_hessian_start[r + 1] > b->row_hessian_start[r];
+    }
+#pragma omp simd
+    for (int c = 0; c < n; ++c)
+        stabilization_columns(live[c] != 0.0, &Ac[c], &stress[c], &w[c],
+                              &energy[c], bulk[c], shear[c], share[c]);
+    gsn_material_from_columns((size_t)n, 18, stress, CHUNK, &e->stress[6 * s0],
+                              18);
+    gsn_material_from_columns((size_t)n, 3, energy, CHUNK, &e->point_energy[s0],
+                              3);
 }
 
 /* Stabilization point s of particle L (block k) on its own packed row:
@@ -1314,17 +1420,18 @@ static void fused_coefficients(const struct gsn_explicit *e, int L,
         elastic_piola(&stress[6 * (size_t)p], e->quadrature->point_weight[p],
                       &P[9 * k]);
     }
-    fused_force_coefficients(P, C);
+    fused_force_coefficients(P, &P[9], &P[18], C, 1);
 }
 
 /* Per-thread work of one block: u and forces (4 per slot), the main
  * points' increments and folded P (9 per point), the elastic shares (1 per
- * point), a fused row's second-derivative sums (18 per point) and a chunk's
- * material work. */
+ * point), a fused row's second-derivative sums (18 per point), the fused
+ * force coefficients in columns (18 of CHUNK) and a chunk's material
+ * work. */
 static size_t block_work_size(const struct gsn_point_blocks *b)
 {
     size_t size = 8 * (size_t)b->max_block_slots +
-                  37 * (size_t)b->max_block_points + CHUNK_WORK;
+                  37 * (size_t)b->max_block_points + 18 * CHUNK + CHUNK_WORK;
     return (size + 7) / 8 * 8; /* whole cache lines per thread */
 }
 
@@ -1384,10 +1491,13 @@ static int block_step(struct gsn_explicit *e, int k)
     double *fold = dH + 9 * (size_t)b->max_block_points;
     double *share = fold + 9 * (size_t)b->max_block_points;
     double *A = share + (size_t)b->max_block_points;
-    double *work = A + 18 * (size_t)b->max_block_points;
+    double *C = A + 18 * (size_t)b->max_block_points; /* columns */
+    double *work = C + 18 * CHUNK;
     block_gather_increment(e, k, u4);
     memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
     memset(&e->point_failed[p0], 0, sizeof(int) * (size_t)(p1 - p0));
+    /* the sums in rows, copied into columns after: the gather storing
+     * them into columns directly was 25% slower (Slope I, NSNI) */
     for (int L = p0; L < p1; ++L) {
         int r = gsn_point_blocks_main_row(b, k, L);
         if (b->fused)
@@ -1404,21 +1514,10 @@ static int block_step(struct gsn_explicit *e, int k)
     if (b->fused) {
         /* NSNI on fused rows: each point's three strain gradients, then
          * its four points' forces in one scatter */
-        for (int L = p0; L < p1; ++L) {
-            int r = gsn_point_blocks_main_row(b, k, L);
-            double C[18] = {0};
-            if (!e->point_dead[L] &&
-                b->row_hessian_start[r + 1] > b->row_hessian_start[r]) {
-                for (int s = 0; s < 3; ++s) {
-                    double dH_s[9], sigma[6];
-                    fused_point_gradient(&A[18 * (L - p0)], s, dH_s);
-                    stabilization_stress(e, L, e->main_point_count + 3 * L + s,
-                                         dH_s, share[L - p0], sigma);
-                }
-                fused_coefficients(e, L, e->stress, C);
-            }
-            fused_row_scatter(b, r, &fold[9 * (L - p0)], C, f4);
-        }
+        fused_stabilization(e, k, p0, p1, share, A, C, work);
+        for (int L = p0; L < p1; ++L)
+            fused_row_scatter(b, gsn_point_blocks_main_row(b, k, L),
+                              &fold[9 * (L - p0)], &C[L - p0], CHUNK, f4);
         block_store(e, k, f4);
         return GSN_OK;
     }
@@ -1465,14 +1564,14 @@ static void block_stiffness(struct gsn_explicit *e, int k, const double *x)
         if (b->fused) {
             for (int s = 0; s < 3; ++s) {
                 double Hs[9];
-                fused_point_gradient(A, s, Hs);
+                fused_point_gradient(A, 1, s, Hs);
                 gsn_matrix_sym_to_voigt(Hs, eps);
                 elastic_stress(bulk, shear, eps, sigma);
                 elastic_piola(sigma, w[e->main_point_count + 3 * L + s],
                               &P[9 * s]);
             }
-            fused_force_coefficients(P, C);
-            fused_row_scatter(b, row, &fold[9 * (L - p0)], C, f4);
+            fused_force_coefficients(P, &P[9], &P[18], C, 1);
+            fused_row_scatter(b, row, &fold[9 * (L - p0)], C, 1, f4);
             continue;
         }
         for (int s = 0; s < S; ++s) {
@@ -2227,7 +2326,7 @@ static void block_forces(struct gsn_explicit *e, int k)
         if (!e->point_dead[L])
             fused_coefficients(e, L, e->stress, C);
         fused_row_scatter(b, gsn_point_blocks_main_row(b, k, L),
-                          &fold[9 * (L - p0)], C, f4);
+                          &fold[9 * (L - p0)], C, 1, f4);
     }
     for (int L = p0; L < p1 && !b->fused; ++L)
         for (int s = 0; s < S && !e->point_dead[L]; ++s) {

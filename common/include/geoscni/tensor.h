@@ -47,13 +47,16 @@ static inline int gsn_voigt_index(int i, int j)
 /* Full 3x3 (row-major) from Voigt, and symmetric part of a 3x3 to Voigt. */
 static inline void gsn_voigt_to_matrix(const double v[6], double m[9])
 {
+#pragma GCC unroll 3
     for (int i = 0; i < 3; ++i)
+#pragma GCC unroll 3
         for (int j = 0; j < 3; ++j)
             m[3 * i + j] = v[gsn_voigt_index(i, j)];
 }
 
 static inline void gsn_matrix_sym_to_voigt(const double m[9], double v[6])
 {
+#pragma GCC unroll 6
     for (int a = 0; a < GSN_VOIGT_SIZE; ++a) {
         const int i = gsn_voigt_row[a], j = gsn_voigt_col[a];
         v[a] = 0.5 * (m[3 * i + j] + m[3 * j + i]);
