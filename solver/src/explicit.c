@@ -1509,24 +1509,27 @@ static int block_step(struct gsn_explicit *e, int k)
                    &e->block_distortion[DISTORTION_COLUMNS * (size_t)k]) !=
         GSN_OK)
         return GSN_ERR_NUMERICAL;
-    memcpy(fold, &e->piola[9 * (size_t)p0],
-           sizeof(double) * 9 * (size_t)(p1 - p0));
+    const double *P = &e->piola[9 * (size_t)p0];
     if (b->fused) {
         /* NSNI on fused rows: each point's three strain gradients, then
          * its four points' forces in one scatter */
         fused_stabilization(e, k, p0, p1, share, A, C, work);
         for (int L = p0; L < p1; ++L)
             fused_row_scatter(b, gsn_point_blocks_main_row(b, k, L),
-                              &fold[9 * (L - p0)], &C[L - p0], CHUNK, f4);
+                              &P[9 * (L - p0)], &C[L - p0], CHUNK, f4);
         block_store(e, k, f4);
         return GSN_OK;
+    }
+    if (S > 0) { /* MSCNI folds its sub-cells' -P_s B_L into a copy */
+        memcpy(fold, P, sizeof(double) * 9 * (size_t)(p1 - p0));
+        P = fold;
     }
     for (int L = p0; L < p1; ++L)
         for (int s = 0; s < S && !e->point_dead[L]; ++s)
             stabilization_point(e, k, L, s, u4, &dH[9 * (L - p0)],
                                 share[L - p0], &fold[9 * (L - p0)], f4);
     for (int L = p0; L < p1; ++L)
-        row_scatter(b, gsn_point_blocks_main_row(b, k, L), &fold[9 * (L - p0)],
+        row_scatter(b, gsn_point_blocks_main_row(b, k, L), &P[9 * (L - p0)],
                     f4);
     block_store(e, k, f4);
     return GSN_OK;
