@@ -5,8 +5,9 @@
 # RUNS runs each; prints every run and the medians. The model is made once
 # by pre; each run solves STEPS steps at the paper's time step and writes
 # only its first and last frames; a run's line ends with where its step
-# time went (row pass, boundary solves, updates; nothing
-# from a build older than that report). INTEGRATION replaces the case's
+# time went (row pass, boundary solves, updates, and the shares of the
+# pass's gather, material, stabilization and scatter since 2026-12-07;
+# nothing from a build older than that report). INTEGRATION replaces the case's
 # integration (e.g. scni for plain SCNI; slope_I.yaml has MSCNI); THREADS
 # lists the thread counts to run.
 # LOADED=T measures the pass with damage and plasticity at work: the

@@ -89,6 +89,7 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
                         e->piola,
                         e->point_energy,
                         e->thread_work,
+                        e->thread_part_ticks,
                         e->damping_force,
                         e->point_mass,
                         e->reference_offset,
@@ -624,6 +625,11 @@ int gsn_explicit_create(const struct gsn_model *m,
         GSN_CHECK_GOTO(e->thread_work, rc, GSN_ERR_MEMORY, fail,
                        "cannot allocate %zu bytes of thread work", bytes);
         memset(e->thread_work, 0, bytes);
+        bytes = sizeof(double) * 8 * (size_t)e->thread_count;
+        e->thread_part_ticks = aligned_alloc(64, bytes);
+        GSN_CHECK_GOTO(e->thread_part_ticks, rc, GSN_ERR_MEMORY, fail,
+                       "cannot allocate %zu bytes of thread timers", bytes);
+        memset(e->thread_part_ticks, 0, bytes);
     }
     {
         size_t items = points > n3 / 3 ? points : n3 / 3;
@@ -1478,6 +1484,28 @@ static void block_store(struct gsn_explicit *e, int k, const double *f4)
             out[3 * s + i] = f4[4 * s + i];
 }
 
+/* A clock for the shares of the pass's parts: the time stamp counter
+ * where there is one (a few cycles), else the wall clock. */
+static inline double pass_clock(void)
+{
+#if defined(__x86_64__)
+    return (double)__builtin_ia32_rdtsc();
+#else
+    return omp_get_wtime();
+#endif
+}
+
+/* Adds the ticks since *mark to this thread's part `part` and moves the
+ * mark (summed into pass_part_ticks after each pass). */
+static inline void part_end(const struct gsn_explicit *e,
+                            enum gsn_pass_part part, double *mark)
+{
+    double now = pass_clock();
+    e->thread_part_ticks[8 * (size_t)omp_get_thread_num() + part] +=
+        now - *mark;
+    *mark = now;
+}
+
 /* The step's pass over block k: kinematics, stress and forces of its
  * points from the increments d - d_n, reading its rows once. */
 static int block_step(struct gsn_explicit *e, int k)
@@ -1493,6 +1521,7 @@ static int block_step(struct gsn_explicit *e, int k)
     double *A = share + (size_t)b->max_block_points;
     double *C = A + 18 * (size_t)b->max_block_points; /* columns */
     double *work = C + 18 * CHUNK;
+    double mark = pass_clock();
     block_gather_increment(e, k, u4);
     memset(f4, 0, sizeof(double) * 4 * (size_t)slots);
     memset(&e->point_failed[p0], 0, sizeof(int) * (size_t)(p1 - p0));
@@ -1505,19 +1534,23 @@ static int block_step(struct gsn_explicit *e, int k)
         else
             row_gradient(b, r, u4, &dH[9 * (L - p0)]);
     }
+    part_end(e, GSN_PASS_GATHER, &mark);
     if (main_chunk(e, p0, p1, dH, work, share,
                    &e->block_distortion[DISTORTION_COLUMNS * (size_t)k]) !=
         GSN_OK)
         return GSN_ERR_NUMERICAL;
+    part_end(e, GSN_PASS_MATERIAL, &mark);
     const double *P = &e->piola[9 * (size_t)p0];
     if (b->fused) {
         /* NSNI on fused rows: each point's three strain gradients, then
          * its four points' forces in one scatter */
         fused_stabilization(e, k, p0, p1, share, A, C, work);
+        part_end(e, GSN_PASS_STABILIZATION, &mark);
         for (int L = p0; L < p1; ++L)
             fused_row_scatter(b, gsn_point_blocks_main_row(b, k, L),
                               &P[9 * (L - p0)], &C[L - p0], CHUNK, f4);
         block_store(e, k, f4);
+        part_end(e, GSN_PASS_SCATTER, &mark);
         return GSN_OK;
     }
     if (S > 0) { /* MSCNI folds its sub-cells' -P_s B_L into a copy */
@@ -1528,10 +1561,12 @@ static int block_step(struct gsn_explicit *e, int k)
         for (int s = 0; s < S && !e->point_dead[L]; ++s)
             stabilization_point(e, k, L, s, u4, &dH[9 * (L - p0)],
                                 share[L - p0], &fold[9 * (L - p0)], f4);
+    part_end(e, GSN_PASS_STABILIZATION, &mark);
     for (int L = p0; L < p1; ++L)
         row_scatter(b, gsn_point_blocks_main_row(b, k, L), &P[9 * (L - p0)],
                     f4);
     block_store(e, k, f4);
+    part_end(e, GSN_PASS_SCATTER, &mark);
     return GSN_OK;
 }
 
@@ -1748,6 +1783,11 @@ static int update_stress_from_increments(struct gsn_explicit *e)
             gsn_point_blocks_reduce_one(e->blocks, i, e->slot_force,
                                         &e->f_int[3 * (size_t)i]);
     }
+    for (int t = 0; t < e->thread_count; ++t)
+        for (int part = 0; part < GSN_PASS_PART_COUNT; ++part) {
+            e->pass_part_ticks[part] += e->thread_part_ticks[8 * t + part];
+            e->thread_part_ticks[8 * t + part] = 0.0;
+        }
     if (failed) {
         GSN_CALL(report_failure(e, "det F <= 0 or the material update failed"));
         GSN_CHECK(0, GSN_ERR_NUMERICAL, "step %ld: the stress update failed",
@@ -2800,6 +2840,8 @@ int gsn_explicit_carry_over(struct gsn_explicit *to,
     to->distortion_strain = 0.0;
     to->distortion_jacobian_min = to->distortion_jacobian_max = 1.0;
     memcpy(to->phase_seconds, from->phase_seconds, sizeof to->phase_seconds);
+    memcpy(to->pass_part_ticks, from->pass_part_ticks,
+           sizeof to->pass_part_ticks);
     to->factor_seconds = from->factor_seconds;
 done:
     free(field);

@@ -71,6 +71,16 @@ enum gsn_explicit_phase {
     GSN_PHASE_COUNT
 };
 
+/* Parts of the row pass's blocks (block_step), for their shares of its
+ * time (pass_part_ticks). */
+enum gsn_pass_part {
+    GSN_PASS_GATHER,        /* the increments and the rows' sums */
+    GSN_PASS_MATERIAL,      /* the main points' kinematics and stress */
+    GSN_PASS_STABILIZATION, /* the stabilization points */
+    GSN_PASS_SCATTER,       /* the forces into the slots */
+    GSN_PASS_PART_COUNT
+};
+
 struct gsn_explicit {
     const struct gsn_model *model;             /* borrowed */
     const struct gsn_quadrature *quadrature;   /* borrowed */
@@ -126,6 +136,10 @@ struct gsn_explicit {
      * energy balance's kinetic term (solve.c, check_energy), J */
     double conserved_kinetic_energy;
     double phase_seconds[GSN_PHASE_COUNT]; /* wall time of the steps, s */
+    /* the blocks' parts summed over the threads, in clock ticks (the time
+     * stamp counter on x86-64): their shares, not seconds */
+    double pass_part_ticks[GSN_PASS_PART_COUNT];
+    double *thread_part_ticks; /* threads x 8: one cache line each */
     /* of it, spent factorizing the boundary matrices (the first solve
      * after a restart or new masses), taken out of
      * phase_seconds[GSN_PHASE_CONSTRAINTS], s */

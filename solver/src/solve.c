@@ -994,6 +994,17 @@ static void print_phases(const struct gsn_explicit *e)
            100.0 * t[GSN_PHASE_PASS] / total,
            100.0 * t[GSN_PHASE_CONSTRAINTS] / total,
            100.0 * t[GSN_PHASE_UPDATES] / total, total);
+    const double *part = e->pass_part_ticks;
+    double blocks = 0.0;
+    for (int k = 0; k < GSN_PASS_PART_COUNT; ++k)
+        blocks += part[k];
+    if (blocks > 0.0)
+        printf("; the pass's blocks: gather %.0f%%, material %.0f%%, "
+               "stabilization %.0f%%, scatter %.0f%%",
+               100.0 * part[GSN_PASS_GATHER] / blocks,
+               100.0 * part[GSN_PASS_MATERIAL] / blocks,
+               100.0 * part[GSN_PASS_STABILIZATION] / blocks,
+               100.0 * part[GSN_PASS_SCATTER] / blocks);
     if (e->factor_seconds > 0.0)
         printf("; besides, %.3g s factorizing the boundary matrices",
                e->factor_seconds);
