@@ -1355,11 +1355,13 @@ stabilization_columns(int on, double *A, double *stress, const double *w,
 
 /* NSNI's three stabilization points of each nodal point of [p0, p1) on
  * columns (as main_chunk, so that the loop over points vectorizes): the
- * increments from the fused rows' sums A (fused_point_gradient), their
- * stresses and work (stabilization_stress's arithmetic), and in A's place
- * the force coefficients C of fused_coefficients in columns Ac (stride
- * CHUNK), which the scatter reads there. A failed point, or one whose row
- * has no second derivatives, keeps its stresses and does no work. */
+ * increments from the fused rows' sums A (rows of 18; fused_point_gradient
+ * on their copy in the columns Ac), their stresses and work
+ * (stabilization_update), and then in Ac, over the sums, the force
+ * coefficients C of fused_coefficients, which the scatter reads there
+ * (stride CHUNK). A failed point, or one whose row has no second
+ * derivatives, keeps its stresses and does no work (its energy increment
+ * is 0). */
 static void fused_stabilization(struct gsn_explicit *e, int k, int p0, int p1,
                                 const double *share, const double *A,
                                 double *Ac, double *work)
@@ -1368,9 +1370,9 @@ static void fused_stabilization(struct gsn_explicit *e, int k, int p0, int p1,
     const int n = p1 - p0;
     const size_t s0 = (size_t)e->main_point_count + 3 * (size_t)p0;
     double *stress = work, *w = stress + 18 * CHUNK;
-    gsn_material_to_columns((size_t)n, 18, A, 18, Ac, CHUNK);
     double *energy = w + 3 * CHUNK, *bulk = energy + 3 * CHUNK;
     double *shear = bulk + CHUNK, *live = shear + CHUNK;
+    gsn_material_to_columns((size_t)n, 18, A, 18, Ac, CHUNK);
     gsn_material_to_columns((size_t)n, 18, &e->stress[6 * s0], 18, stress,
                             CHUNK);
     gsn_material_to_columns((size_t)n, 3, &e->quadrature->point_weight[s0], 3,
