@@ -101,6 +101,9 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         free(arrays[i]);
     free(e->point_failed);
+    free(e->block_range);
+    free(e->block_taken);
+    free(e->block_deque);
     free(e->increment);
     free(e->displacement_gradient);
     free(e->slot_force);
@@ -630,6 +633,19 @@ int gsn_explicit_create(const struct gsn_model *m,
         GSN_CHECK_GOTO(e->thread_part_ticks, rc, GSN_ERR_MEMORY, fail,
                        "cannot allocate %zu bytes of thread timers", bytes);
         memset(e->thread_part_ticks, 0, bytes);
+        bytes = sizeof(uint64_t) * 8 * (size_t)e->thread_count;
+        e->block_deque = aligned_alloc(64, bytes);
+        GSN_CHECK_GOTO(e->block_deque, rc, GSN_ERR_MEMORY, fail,
+                       "cannot allocate %zu bytes of block ranges", bytes);
+        memset(e->block_deque, 0, bytes);
+        GSN_CALL_GOTO(alloc_array((void **)&e->block_range,
+                                  (size_t)e->thread_count + 1,
+                                  sizeof *e->block_range),
+                      rc, fail);
+        GSN_CALL_GOTO(alloc_array((void **)&e->block_taken,
+                                  (size_t)e->thread_count,
+                                  sizeof *e->block_taken),
+                      rc, fail);
     }
     {
         size_t items = points > n3 / 3 ? points : n3 / 3;
@@ -1756,6 +1772,68 @@ static int gather_distortion(struct gsn_explicit *e)
         x[1], x[2]);
 }
 
+/* The pass's ranges of blocks for `threads` threads (explicit.h,
+ * block_range): sized by the blocks each thread took in the last pass, or
+ * equal when the thread count is new; and their deques filled. */
+static void plan_block_ranges(struct gsn_explicit *e, int threads)
+{
+    const int blocks = e->blocks->block_count;
+    int *range = e->block_range;
+    if (e->block_range_threads != threads) {
+        for (int t = 0; t <= threads; ++t)
+            range[t] = (int)((long)blocks * t / threads);
+        e->block_range_threads = threads;
+    } else {
+        for (int t = 0; t < threads; ++t)
+            range[t + 1] = range[t] + e->block_taken[t];
+    }
+    for (int t = 0; t < threads; ++t)
+        e->block_deque[8 * t] =
+            (uint64_t)range[t] << 32 | (uint64_t)range[t + 1];
+}
+
+/* Block index from deque *word: its front (the owner) or its back (a
+ * thief); -1 if it is empty. The compare-and-swap makes every block taken
+ * once; what the blocks write is published by the barrier after them. */
+static int take_block(uint64_t *word, int from_back)
+{
+    uint64_t old = __atomic_load_n(word, __ATOMIC_RELAXED);
+    for (;;) {
+        uint64_t front = old >> 32, back = old & 0xffffffffu;
+        if (front >= back)
+            return -1;
+        uint64_t taken =
+            from_back ? front << 32 | (back - 1) : (front + 1) << 32 | back;
+        if (__atomic_compare_exchange_n(word, &old, taken, 1, __ATOMIC_RELAXED,
+                                        __ATOMIC_RELAXED))
+            return (int)(from_back ? back - 1 : front);
+    }
+}
+
+/* Thread t's next block: its own range's front, else the back of the
+ * range with the most blocks left; -1 when none is left. */
+static int next_block(struct gsn_explicit *e, int t, int threads)
+{
+    int k = take_block(&e->block_deque[8 * t], 0);
+    while (k < 0) {
+        int victim = -1;
+        uint64_t most = 0;
+        for (int v = 0; v < threads; ++v) {
+            uint64_t w =
+                __atomic_load_n(&e->block_deque[8 * v], __ATOMIC_RELAXED);
+            uint64_t front = w >> 32, back = w & 0xffffffffu;
+            if (back > front && back - front > most) {
+                most = back - front;
+                victim = v;
+            }
+        }
+        if (victim < 0)
+            return -1;
+        k = take_block(&e->block_deque[8 * victim], 1);
+    }
+    return k;
+}
+
 /* gsn_explicit_update_stress from the increments already in e->increment
  * (the step writes them with d_{n+1}). */
 static int update_stress_from_increments(struct gsn_explicit *e)
@@ -1766,11 +1844,18 @@ static int update_stress_from_increments(struct gsn_explicit *e)
      * wake-up of the threads; the reduction needs the barrier anyway). */
 #pragma omp parallel if (parallel)
     {
-        /* clang-format off */
-#pragma omp for schedule(dynamic, 2) reduction(|:failed)
-        /* clang-format on */
-        for (int k = 0; k < e->blocks->block_count; ++k)
-            failed |= block_step(e, k) != GSN_OK;
+        const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+#pragma omp single
+        plan_block_ranges(e, threads);
+        int taken = 0, failed_here = 0;
+        for (int k; (k = next_block(e, t, threads)) >= 0; ++taken)
+            failed_here |= block_step(e, k) != GSN_OK;
+        e->block_taken[t] = taken;
+        if (failed_here) {
+#pragma omp atomic write
+            failed = 1;
+        }
+#pragma omp barrier
         /* the next step's damage from this step's e_t (nonlocal.h) */
         if (e->nonlocal) {
             const size_t stride = (size_t)e->state_size;
