@@ -1524,35 +1524,39 @@ static inline void part_end(const struct gsn_explicit *e,
     *mark = now;
 }
 
-/* Asks for the cache lines of x[0 .. count) (its first and last element's
- * lines: count <= 16 doubles here). */
-#define PREFETCH_SPAN(x, count, write)                                         \
-    do {                                                                       \
-        __builtin_prefetch((x), (write));                                      \
-        __builtin_prefetch((x) + (count)-1, (write));                          \
-    } while (0)
+/* Asks for every cache line of x[0 .. count): an element every 8 (64
+ * bytes) and the last. */
+static inline void prefetch_span(const double *x, size_t count, int write)
+{
+    for (size_t i = 0; i < count; i += 8)
+        if (write)
+            __builtin_prefetch(x + i, 1);
+        else
+            __builtin_prefetch(x + i, 0);
+    if (write)
+        __builtin_prefetch(x + count - 1, 1);
+    else
+        __builtin_prefetch(x + count - 1, 0);
+}
 
 /* Asks for what main point L's update reads and writes after the block's
  * gather (its H, stress, state and P, and its stabilization points'
  * stresses), during the gather of its row: main_chunk's first reads of
  * them waited on memory (docs/solver.md, "Speed": the material part 0.64
  * times with it; all of a block's asked for at once at its start gave
- * nothing). A loop over the lines instead of the two ends was dropped by
- * GCC 12. */
+ * nothing). */
 static inline void prefetch_point_state(const struct gsn_explicit *e, int L)
 {
     const size_t p = (size_t)L, S = (size_t)e->blocks->subcells;
     const size_t ns = (size_t)e->state_size;
-    PREFETCH_SPAN(&e->displacement_gradient[9 * p], 9, 0);
-    PREFETCH_SPAN(&e->stress[6 * p], 6, 0);
+    prefetch_span(&e->displacement_gradient[9 * p], 9, 0);
+    prefetch_span(&e->stress[6 * p], 6, 0);
     if (ns > 0)
-        PREFETCH_SPAN(&e->state[ns * p], ns, 0);
-    PREFETCH_SPAN(&e->piola[9 * p], 9, 1);
-    /* S stresses of 6 doubles: every other one's first and last element
-     * (bytes 0, 40, 96, 136, ...) touch every line */
-    for (size_t s = 0; s < S; s += 2)
-        PREFETCH_SPAN(&e->stress[6 * ((size_t)e->main_point_count + S * p + s)],
-                      6, 0);
+        prefetch_span(&e->state[ns * p], ns, 0);
+    prefetch_span(&e->piola[9 * p], 9, 1);
+    if (S > 0)
+        prefetch_span(&e->stress[6 * ((size_t)e->main_point_count + S * p)],
+                      6 * S, 0);
 }
 
 /* The step's pass over block k: kinematics, stress and forces of its
