@@ -101,7 +101,6 @@ void gsn_explicit_destroy(struct gsn_explicit **handle)
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         free(arrays[i]);
     free(e->point_failed);
-    free(e->block_range);
     free(e->block_taken);
     free(e->block_deque);
     free(e->increment);
@@ -638,10 +637,6 @@ int gsn_explicit_create(const struct gsn_model *m,
         GSN_CHECK_GOTO(e->block_deque, rc, GSN_ERR_MEMORY, fail,
                        "cannot allocate %zu bytes of block ranges", bytes);
         memset(e->block_deque, 0, bytes);
-        GSN_CALL_GOTO(alloc_array((void **)&e->block_range,
-                                  (size_t)e->thread_count + 1,
-                                  sizeof *e->block_range),
-                      rc, fail);
         GSN_CALL_GOTO(alloc_array((void **)&e->block_taken,
                                   (size_t)e->thread_count,
                                   sizeof *e->block_taken),
@@ -1809,23 +1804,22 @@ static int gather_distortion(struct gsn_explicit *e)
 }
 
 /* The pass's ranges of blocks for `threads` threads (explicit.h,
- * block_range): sized by the blocks each thread took in the last pass, or
- * equal when the thread count is new; and their deques filled. */
+ * block_deque), one after the other: as long as the blocks each thread
+ * took in the last pass, or equal when the thread count is new. */
 static void plan_block_ranges(struct gsn_explicit *e, int threads)
 {
-    const int blocks = e->blocks->block_count;
-    int *range = e->block_range;
-    if (e->block_range_threads != threads) {
-        for (int t = 0; t <= threads; ++t)
-            range[t] = (int)((long)blocks * t / threads);
-        e->block_range_threads = threads;
-    } else {
-        for (int t = 0; t < threads; ++t)
-            range[t + 1] = range[t] + e->block_taken[t];
+    const long blocks = e->blocks->block_count;
+    const int same = e->block_range_threads == threads;
+    e->block_range_threads = threads;
+    uint64_t start = 0;
+    for (int t = 0; t < threads; ++t) {
+        uint64_t count =
+            same
+                ? (uint64_t)e->block_taken[t]
+                : (uint64_t)(blocks * (t + 1) / threads - blocks * t / threads);
+        e->block_deque[8 * t] = start << 32 | (start + count);
+        start += count;
     }
-    for (int t = 0; t < threads; ++t)
-        e->block_deque[8 * t] =
-            (uint64_t)range[t] << 32 | (uint64_t)range[t + 1];
 }
 
 /* Block index from deque *word: its front (the owner) or its back (a

@@ -166,15 +166,14 @@ struct gsn_explicit {
     int *point_failed;    /* points: 1 where pass 1 failed */
     double *thread_work;
     int thread_count;
-    /* The pass's blocks in contiguous ranges, one a thread (block_range[t]
-     * to block_range[t + 1], for block_range_threads threads): each thread
-     * takes its own from the front and then others' from the back
-     * (block_deque: 8 words a thread, one cache line, the first holding
-     * front << 32 | back), and the next pass's ranges are sized by the
-     * blocks each took (block_taken). A block's points then stay in one
-     * core's caches from step to step, where OpenMP's dynamic schedule
-     * moved them between the cores every step. */
-    int *block_range;
+    /* The pass's blocks in contiguous ranges, one a thread (for
+     * block_range_threads threads): each thread takes its own from the
+     * front and then others' from the back (block_deque: 8 words a thread,
+     * one cache line, the first holding front << 32 | back), and the next
+     * pass's ranges are as long as the blocks each took (block_taken). A
+     * block's points then stay in one core's caches from step to step,
+     * where OpenMP's dynamic schedule moved them between the cores every
+     * step. */
     int block_range_threads;
     int *block_taken;
     uint64_t *block_deque;
