@@ -1584,17 +1584,23 @@ static int block_step(struct gsn_explicit *e, int k)
             row_gradient(b, r, u4, &dH[9 * (L - p0)]);
     }
     part_end(e, GSN_PASS_GATHER, &mark);
-    if (main_chunk(e, p0, p1, dH, work, share,
-                   &e->block_distortion[DISTORTION_COLUMNS * (size_t)k]) !=
-        GSN_OK)
-        return GSN_ERR_NUMERICAL;
+    fenv_t caller; /* the column loops' lanes (material.h) */
+    gsn_hold_exceptions(&caller);
+    const int rc =
+        main_chunk(e, p0, p1, dH, work, share,
+                   &e->block_distortion[DISTORTION_COLUMNS * (size_t)k]);
     part_end(e, GSN_PASS_MATERIAL, &mark);
-    const double *P = &e->piola[9 * (size_t)p0];
-    if (b->fused) {
+    if (rc == GSN_OK && b->fused) {
         /* NSNI on fused rows: each point's three strain gradients, then
-         * its four points' forces in one scatter */
+         * (below) its four points' forces in one scatter */
         fused_stabilization(e, k, p0, p1, share, A, C, work);
         part_end(e, GSN_PASS_STABILIZATION, &mark);
+    }
+    gsn_release_exceptions(&caller);
+    if (rc != GSN_OK)
+        return GSN_ERR_NUMERICAL;
+    const double *P = &e->piola[9 * (size_t)p0];
+    if (b->fused) {
         for (int L = p0; L < p1; ++L)
             fused_row_scatter(b, gsn_point_blocks_main_row(b, k, L),
                               &P[9 * (L - p0)], &C[L - p0], CHUNK, f4);

@@ -28,6 +28,7 @@
 
 #include "geoscni/case.h"
 
+#include <fenv.h>
 #include <stddef.h>
 
 #ifdef __cplusplus
@@ -106,6 +107,22 @@ gsn_material_from_columns(size_t n, int width, const double *restrict columns,
     for (size_t i = 0; i < n; ++i)
         for (int c = 0; c < width; ++c)
             rows[stride * i + c] = columns[(size_t)c * column + i];
+}
+
+/* Loops over columns compute every case of a select in every lane and
+ * keep one (solver/CMakeLists.txt, -fno-trapping-math), so an untaken case
+ * may divide by zero in its lane. They run between these two: the
+ * floating-point exceptions are held (traps off, the flags raised then
+ * dropped) and the caller's environment is given back after; the callers
+ * check the results themselves (non-finite stresses, inverted points). */
+static inline void gsn_hold_exceptions(fenv_t *caller)
+{
+    feholdexcept(caller);
+}
+
+static inline void gsn_release_exceptions(const fenv_t *caller)
+{
+    fesetenv(caller);
 }
 
 /* A model with its parameters: what the solver holds. */

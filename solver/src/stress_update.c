@@ -120,7 +120,11 @@ int gsn_stress_update(const struct gsn_material_model *model, size_t count,
     const struct gsn_material_ops *ops = model->ops;
     const size_t ns = (size_t)ops->state_size;
     double block[6 * STRESS_UPDATE_BLOCK], Q[9 * STRESS_UPDATE_BLOCK];
-    for (size_t first = 0; first < count; first += STRESS_UPDATE_BLOCK) {
+    fenv_t caller;
+    gsn_hold_exceptions(&caller);
+    int rc = GSN_OK;
+    for (size_t first = 0; first < count && rc == GSN_OK;
+         first += STRESS_UPDATE_BLOCK) {
         size_t n = STRESS_UPDATE_BLOCK;
         if (count - first < n)
             n = count - first;
@@ -130,11 +134,12 @@ int gsn_stress_update(const struct gsn_material_model *model, size_t count,
         double *q = ns ? state + ns * first : state;
         block_increments(n, gradient_increment + 9 * first, de, Q);
         rotate_block(ops, n, Q, stress + 6 * first, q);
-        int rc = ops->update(model->context, n, de, stress + 6 * first, q);
-        if (rc != GSN_OK)
-            return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
-                                  "ops->update(model->context, n, de, ...)");
+        rc = ops->update(model->context, n, de, stress + 6 * first, q);
     }
+    gsn_release_exceptions(&caller);
+    if (rc != GSN_OK)
+        return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
+                              "ops->update(model->context, n, de, ...)");
     return GSN_OK;
 }
 
