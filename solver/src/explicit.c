@@ -31,10 +31,14 @@ enum { SUM_PIECE = 1024 };
 enum { DISTORTION_COLUMNS = 6 };
 /* Points per batch of the material update. */
 enum { CHUNK = 128 };
-/* Doubles of per-thread work per batch (main_chunk): H, dH, new H, G in
- * columns and by points, det F and det F_mid, strain, strain increment, old
- * stress, old equivalent plastic strain. */
-enum { CHUNK_WORK = CHUNK * (9 * 5 + 3 + 6 + 6 + 1) };
+_Static_assert((int)CHUNK <= (int)GSN_MATERIAL_MAX_COLUMN,
+               "gsn_stress_update_columns takes at most "
+               "GSN_MATERIAL_MAX_COLUMN points");
+/* Doubles of per-thread work per batch (main_chunk), all in columns: H,
+ * dH, new H, G, det F and det F_mid, strain, stress, old stress, strain
+ * increment, old equivalent plastic strain, its step, the old and new pore
+ * pressure; the state (state_size columns) besides. */
+enum { CHUNK_WORK = CHUNK * (9 * 4 + 3 + 6 * 3 + 4) };
 /* Lanczos steps of the stable-step estimate: at most LANCZOS_STEPS; it
  * stops when the largest Ritz value's residual bound is below
  * LANCZOS_TOLERANCE of it (the estimate is then that value plus the
@@ -51,7 +55,7 @@ struct gsn_step_sums {
                             finite, or -1 */
 };
 
-static size_t block_work_size(const struct gsn_point_blocks *b);
+static size_t block_work_size(const struct gsn_explicit *e);
 
 static int parallel_worth(int items)
 {
@@ -622,7 +626,7 @@ int gsn_explicit_create(const struct gsn_model *m,
     {
         /* 64-byte aligned, so the 4-double slots never straddle a line */
         size_t bytes = sizeof(double) * (size_t)e->thread_count *
-                       block_work_size(e->blocks);
+                       block_work_size(e);
         e->thread_work = aligned_alloc(64, bytes);
         GSN_CHECK_GOTO(e->thread_work, rc, GSN_ERR_MEMORY, fail,
                        "cannot allocate %zu bytes of thread work", bytes);
@@ -1145,15 +1149,13 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
     const int plastic = e->plastic_offset >= 0;
     const size_t ns = (size_t)e->state_size;
     double *Hc = work, *dHc = Hc + 9 * CHUNK, *Hnew = dHc + 9 * CHUNK;
-    double *Gc = Hnew + 9 * CHUNK, *G = Gc + 9 * CHUNK;
-    double *J1 = G + 9 * CHUNK, *Jmid = J1 + CHUNK, *strain = Jmid + CHUNK;
-    double *deps = strain + CHUNK, *old = deps + 6 * CHUNK;
-    double *old_plastic = old + 6 * CHUNK;
-    /* after the update, the columns of H and dH hold these, and P those
-     * of G */
-    double *stress_c = Hc, *deps_c = Hc + 6 * CHUNK, *Pc = Gc;
-    double *plastic_step = Hc + 12 * CHUNK, *u_old = plastic_step + CHUNK;
-    double *u_new = u_old + CHUNK;
+    double *Gc = Hnew + 9 * CHUNK, *J1 = Gc + 9 * CHUNK, *Jmid = J1 + CHUNK;
+    double *strain = Jmid + CHUNK, *stress = strain + CHUNK;
+    double *old = stress + 6 * CHUNK, *deps = old + 6 * CHUNK;
+    double *old_plastic = deps + 6 * CHUNK, *plastic_step = old_plastic + CHUNK;
+    double *u_old = plastic_step + CHUNK, *u_new = u_old + CHUNK;
+    double *state = u_new + CHUNK; /* ns columns */
+    double *Pc = Hc;               /* after the kinematics */
     gsn_material_to_columns((size_t)n, 9, &e->displacement_gradient[9 * p0], 9,
                             Hc, CHUNK);
     gsn_material_to_columns((size_t)n, 9, dH_block, 9, dHc, CHUNK);
@@ -1167,7 +1169,6 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
         for (int b = 0; b < n; ++b)
             point_kinematics(0, &Hc[b], &dHc[b], &Hnew[b], &Gc[b], &J1[b],
                              &Jmid[b], &strain[b]);
-    gsn_material_from_columns((size_t)n, 9, Gc, CHUNK, G, 9);
     int failed = 0;
     double strain_max = 0.0, jacobian_min = INFINITY, jacobian_max = 0.0;
     int strain_point = p0, newly_failed = 0, first_failed = -1;
@@ -1186,7 +1187,8 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
             continue;
         }
         if (e->point_dead[p]) {
-            memset(&G[9 * b], 0, 9 * sizeof(double));
+            for (int a = 0; a < 9; ++a)
+                Gc[a * CHUNK + b] = 0.0;
             Jmid[b] = 1.0;
         } else if (e->track_distortion) {
             if (strain[b] > strain_max) {
@@ -1196,10 +1198,6 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
             jacobian_min = gsn_min(jacobian_min, J1[b]);
             jacobian_max = gsn_max(jacobian_max, J1[b]);
         }
-        for (int a = 0; a < 6; ++a)
-            old[a * CHUNK + b] = e->stress[6 * p + a];
-        if (plastic)
-            old_plastic[b] = e->state[ns * p + e->plastic_offset];
     }
     distortion[0] = strain_max;
     distortion[1] = jacobian_min;
@@ -1209,27 +1207,40 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
     distortion[5] = first_failed;
     if (failed)
         return GSN_ERR_NUMERICAL;
+    /* the stress and state in columns for the material, from its rows
+     * (a point that failed above has no stress from now on) */
+    gsn_material_to_columns((size_t)n, 6, &e->stress[6 * p0], 6, stress,
+                            CHUNK);
+    gsn_material_to_columns((size_t)n, (int)ns, &e->state[ns * p0], ns, state,
+                            CHUNK);
+    memcpy(old, stress, sizeof(double) * 6 * CHUNK);
+    if (plastic)
+        memcpy(old_plastic, &state[(size_t)e->plastic_offset * CHUNK],
+               sizeof(double) * (size_t)n);
     int rc = GSN_OK;
     const unsigned char *kind = e->point_material;
     for (int a = p0, z = p0; a < p1 && rc == GSN_OK; a = z) {
         for (z = a + 1; z < p1 && kind[z] == kind[a]; ++z)
             ;
-        rc = gsn_stress_update(e->materials->model[kind[a]], (size_t)(z - a),
-                               &G[9 * (a - p0)], &e->stress[6 * a],
-                               &e->state[ns * a], &deps[6 * (a - p0)]);
+        rc = gsn_stress_update_columns(e->materials->model[kind[a]],
+                                       (size_t)(z - a), CHUNK, &Gc[a - p0],
+                                       &stress[a - p0], &state[a - p0],
+                                       &deps[a - p0]);
     }
     if (rc != GSN_OK) {
         for (int p = p0; p < p1; ++p)
             e->point_failed[p] = 1;
         return rc;
     }
-    gsn_material_to_columns((size_t)n, 6, &e->stress[6 * p0], 6, stress_c,
-                            CHUNK);
-    gsn_material_to_columns((size_t)n, 6, deps, 6, deps_c, CHUNK);
+    gsn_material_from_columns((size_t)n, 6, stress, CHUNK, &e->stress[6 * p0],
+                              6);
+    gsn_material_from_columns((size_t)n, (int)ns, state, CHUNK,
+                              &e->state[ns * p0], ns);
     for (int p = p0; p < p1; ++p) {
         const int b = p - p0;
         plastic_step[b] =
-            plastic ? e->state[ns * p + e->plastic_offset] - old_plastic[b]
+            plastic ? state[(size_t)e->plastic_offset * CHUNK + b] -
+                          old_plastic[b]
                     : 0.0;
         /* the total stress; u rises with the load factor */
         const double u = e->pore_pressure ? e->pore_pressure[p] : 0.0;
@@ -1238,7 +1249,7 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
     }
 #pragma omp simd
     for (int b = 0; b < n; ++b)
-        point_end(large, &deps_c[b], &old[b], &stress_c[b], &Hnew[b],
+        point_end(large, &deps[b], &old[b], &stress[b], &Hnew[b],
                   plastic_step[b], u_old[b], u_new[b], Jmid[b], w[p0 + b],
                   &share[b], &e->point_energy[p0 + b], &Pc[b]);
     gsn_material_from_columns((size_t)n, 9, Pc, CHUNK, &e->piola[9 * p0], 9);
@@ -1447,17 +1458,19 @@ static void fused_coefficients(const struct gsn_explicit *e, int L,
  * point), a fused row's second-derivative sums (18 per point), the fused
  * force coefficients in columns (18 of CHUNK) and a chunk's material
  * work. */
-static size_t block_work_size(const struct gsn_point_blocks *b)
+static size_t block_work_size(const struct gsn_explicit *e)
 {
+    const struct gsn_point_blocks *b = e->blocks;
     size_t size = 8 * (size_t)b->max_block_slots +
-                  37 * (size_t)b->max_block_points + 18 * CHUNK + CHUNK_WORK;
+                  37 * (size_t)b->max_block_points + 18 * CHUNK + CHUNK_WORK +
+                  (size_t)e->state_size * CHUNK;
     return (size + 7) / 8 * 8; /* whole cache lines per thread */
 }
 
 static double *block_work(const struct gsn_explicit *e)
 {
     return &e->thread_work[(size_t)omp_get_thread_num() *
-                           block_work_size(e->blocks)];
+                           block_work_size(e)];
 }
 
 /* Gathers x (n x 3) into the slots of block k, 4 doubles per slot. */

@@ -69,13 +69,17 @@ struct gsn_material_ops {
     int (*initialize)(const void *context, size_t count,
                       const double *restrict stress, double *restrict state);
 
-    /* One strain-driven step of count points: from the stress and state at
+    /* One strain-driven step of n points: from the stress and state at
      * t_n (already rotated to t_{n+1} by the objective update) and the
-     * strain increment, the stress and state at t_{n+1}, in place. Pure:
-     * no allocation, I/O or globals; the caller parallelizes over batches.
-     * Returns GSN_OK, or GSN_ERR_NUMERICAL (raised, naming the point in the
-     * batch) when a point cannot be updated. */
-    int (*update)(const void *context, size_t count,
+     * strain increment, the stress and state at t_{n+1}, in place. The
+     * arrays are columns (below): component c of point i at
+     * x[c * column + i], i < n <= column, so that the loop over points
+     * vectorizes; gsn_material_update takes point-major arrays. Pure: no
+     * allocation, I/O or globals; the caller parallelizes over batches and
+     * holds the floating-point exceptions (gsn_hold_exceptions). Returns
+     * GSN_OK, or GSN_ERR_NUMERICAL (raised, naming the point in the batch)
+     * when a point cannot be updated. */
+    int (*update)(const void *context, size_t n, size_t column,
                   const double *restrict strain_increment,
                   double *restrict stress, double *restrict state);
 
@@ -87,9 +91,9 @@ struct gsn_material_ops {
  * vectorizes (#pragma omp simd; 8 points an instruction with AVX-512):
  * component c of point i of a point-major array with `stride` doubles a
  * point is columns[c * column + i], i < n <= column (GSN_MATERIAL_COLUMN
- * in the material update). Only copies: the bits of an update do not depend
- * on the layout. */
-enum { GSN_MATERIAL_COLUMN = 64 };
+ * in the updates of point-major arrays, at most GSN_MATERIAL_MAX_COLUMN).
+ * Only copies: the bits of an update do not depend on the layout. */
+enum { GSN_MATERIAL_COLUMN = 64, GSN_MATERIAL_MAX_COLUMN = 128 };
 
 static inline void
 gsn_material_to_columns(size_t n, int width, const double *restrict rows,
@@ -188,7 +192,9 @@ void gsn_material_model_destroy(struct gsn_material_model **model);
 int gsn_material_state_offset(const struct gsn_material_ops *ops,
                               const char *name);
 
-/* Convenience calls through the table. */
+/* Calls through the table; gsn_material_update on point-major arrays
+ * (strain increment count x 6, stress count x 6, state count x state_size),
+ * copied into columns GSN_MATERIAL_COLUMN points at a time. */
 int gsn_material_initialize(const struct gsn_material_model *model,
                             size_t count, const double *restrict stress,
                             double *restrict state);

@@ -178,17 +178,6 @@ static inline double ddp_return(const struct ddp *m, double *restrict sb,
     return !flows ? 0.0 : cone ? (1.0 - scale) * ns / two_mu : ns / two_mu;
 }
 
-/* Points per block of columns. */
-#define DDP_BLOCK ((size_t)GSN_MATERIAL_COLUMN)
-
-/* Column offsets of a block's working copy (DDP_BLOCK doubles each). */
-enum {
-    DDP_COLUMN_STRAIN_INCREMENT = 0,
-    DDP_COLUMN_STATE = 6,
-    DDP_COLUMN_STRESS = 6 + DDP_STATE_SIZE,
-    DDP_COLUMNS = 12 + DDP_STATE_SIZE
-};
-
 /* What of the model a point goes through: the variants of ddp_point, each
  * with its own loop over the points, since the vectorizer cannot select by
  * a flag that is the same for every point. */
@@ -248,65 +237,54 @@ ddp_point(const struct ddp *m, const double *restrict de, double *restrict q,
         stress[a * s] = (1.0 - zeta) * sb[a * s];
 }
 
-/* ddp_point over n points in columns (DDP_BLOCK a column). */
+/* ddp_point over n points in columns. */
 __attribute__((always_inline)) static inline void
-ddp_columns(const struct ddp *m, size_t n, const double *restrict de,
-            double *restrict q, double *restrict stress, const int variant)
+ddp_columns(const struct ddp *m, size_t n, size_t column,
+            const double *restrict de, double *restrict q,
+            double *restrict stress, const int variant)
 {
 #pragma omp simd
     for (size_t i = 0; i < n; ++i)
-        ddp_point(m, &de[i], &q[i], &stress[i], DDP_BLOCK, variant);
+        ddp_point(m, &de[i], &q[i], &stress[i], column, variant);
 }
 
-/* The points go through ddp_point in blocks of columns (material.h), the
- * loop over a block's points vectorized; a non-finite stress is reported
- * after its block, naming the first such point. */
-static int ddp_update(const void *context, size_t count,
+/* The points go through ddp_point in columns, the loop over them
+ * vectorized; a non-finite stress is reported after, naming the first such
+ * point. */
+static int ddp_update(const void *context, size_t n, size_t column,
                       const double *restrict strain_increment,
                       double *restrict stress, double *restrict state)
 {
     /* a copy that the stores of the loop below cannot reach */
     const struct ddp model = *(const struct ddp *)context;
-    const int variant = ddp_variant(&model);
-    double x[DDP_COLUMNS * DDP_BLOCK];
-    double *de = &x[DDP_COLUMN_STRAIN_INCREMENT * DDP_BLOCK];
-    double *q = &x[DDP_COLUMN_STATE * DDP_BLOCK];
-    double *s = &x[DDP_COLUMN_STRESS * DDP_BLOCK];
-    for (size_t first = 0; first < count; first += DDP_BLOCK) {
-        const size_t n = count - first < DDP_BLOCK ? count - first : DDP_BLOCK;
-        gsn_material_to_columns(n, 6, strain_increment + 6 * first, 6, de,
-                                DDP_BLOCK);
-        gsn_material_to_columns(n, DDP_STATE_SIZE,
-                                state + DDP_STATE_SIZE * first, DDP_STATE_SIZE,
-                                q, DDP_BLOCK);
-        switch (variant) { /* every variant ddp_variant makes */
+    switch (ddp_variant(&model)) { /* every variant ddp_variant makes */
 #define DDP_CASE(v)                                                            \
     case v:                                                                    \
-        ddp_columns(&model, n, de, q, s, v);                                   \
+        ddp_columns(&model, n, column, strain_increment, state, stress, v);    \
         break
-            DDP_CASE(0);
-            DDP_CASE(DDP_LOCAL_DAMAGE);
-            DDP_CASE(DDP_NONLOCAL_DAMAGE);
-            DDP_CASE(DDP_PLASTIC);
-            DDP_CASE(DDP_PLASTIC | DDP_CONE_ONLY);
-            DDP_CASE(DDP_LOCAL_DAMAGE | DDP_PLASTIC);
-            DDP_CASE(DDP_LOCAL_DAMAGE | DDP_PLASTIC | DDP_CONE_ONLY);
-            DDP_CASE(DDP_NONLOCAL_DAMAGE | DDP_PLASTIC);
-            DDP_CASE(DDP_NONLOCAL_DAMAGE | DDP_PLASTIC | DDP_CONE_ONLY);
+        DDP_CASE(0);
+        DDP_CASE(DDP_LOCAL_DAMAGE);
+        DDP_CASE(DDP_NONLOCAL_DAMAGE);
+        DDP_CASE(DDP_PLASTIC);
+        DDP_CASE(DDP_PLASTIC | DDP_CONE_ONLY);
+        DDP_CASE(DDP_LOCAL_DAMAGE | DDP_PLASTIC);
+        DDP_CASE(DDP_LOCAL_DAMAGE | DDP_PLASTIC | DDP_CONE_ONLY);
+        DDP_CASE(DDP_NONLOCAL_DAMAGE | DDP_PLASTIC);
+        DDP_CASE(DDP_NONLOCAL_DAMAGE | DDP_PLASTIC | DDP_CONE_ONLY);
 #undef DDP_CASE
-        }
-        gsn_material_from_columns(n, DDP_STATE_SIZE, q, DDP_BLOCK,
-                                  state + DDP_STATE_SIZE * first,
-                                  DDP_STATE_SIZE);
-        gsn_material_from_columns(n, 6, s, DDP_BLOCK, stress + 6 * first, 6);
-        for (size_t i = first; i < first + n; ++i) {
-            const double *t = stress + 6 * i, *d = strain_increment + 6 * i;
-            if (!isfinite(t[0] + t[1] + t[2] + t[3] + t[4] + t[5]))
-                return gsn_error_raise(
-                    GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
-                    "damage_drucker_prager: non-finite stress at point %zu "
-                    "of the batch (strain increment %g %g %g %g %g %g)",
-                    i, d[0], d[1], d[2], d[3], d[4], d[5]);
+    }
+    for (size_t i = 0; i < n; ++i) {
+        double t = 0.0;
+        for (size_t a = 0; a < 6; ++a)
+            t += stress[a * column + i];
+        if (!isfinite(t)) {
+            const double *d = strain_increment + i;
+            return gsn_error_raise(
+                GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
+                "damage_drucker_prager: non-finite stress at point %zu "
+                "of the batch (strain increment %g %g %g %g %g %g)",
+                i, d[0], d[column], d[2 * column], d[3 * column],
+                d[4 * column], d[5 * column]);
         }
     }
     return GSN_OK;

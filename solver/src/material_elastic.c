@@ -39,22 +39,23 @@ static int elastic_initialize(const void *context, size_t count,
     return GSN_OK;
 }
 
-static int elastic_update(const void *context, size_t count,
+static int elastic_update(const void *context, size_t n, size_t column,
                           const double *restrict strain_increment,
                           double *restrict stress, double *restrict state)
 {
     (void)state;
     const struct elastic *e = context;
     const double K = e->bulk_modulus, two_mu = 2.0 * e->shear_modulus;
-    for (size_t i = 0; i < count; ++i) {
-        const double *de = strain_increment + 6 * i;
-        double *s = stress + 6 * i;
-        const double dv = de[0] + de[1] + de[2];
+#pragma omp simd
+    for (size_t i = 0; i < n; ++i) {
+        const double *de = strain_increment + i;
+        double *s = stress + i;
+        const double dv = de[0] + de[column] + de[2 * column];
         const double dp = K * dv - two_mu * dv / 3.0;
-        for (int a = 0; a < 3; ++a)
-            s[a] += dp + two_mu * de[a];
-        for (int a = 3; a < 6; ++a)
-            s[a] += two_mu * de[a];
+        for (size_t a = 0; a < 3; ++a)
+            s[a * column] += dp + two_mu * de[a * column];
+        for (size_t a = 3; a < 6; ++a)
+            s[a * column] += two_mu * de[a * column];
     }
     return GSN_OK;
 }

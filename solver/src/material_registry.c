@@ -130,8 +130,31 @@ int gsn_material_update(const struct gsn_material_model *model, size_t count,
                         const double *restrict strain_increment,
                         double *restrict stress, double *restrict state)
 {
-    GSN_CALL(model->ops->update(model->context, count, strain_increment, stress,
-                                state));
+    enum { C = GSN_MATERIAL_COLUMN };
+    const size_t ns = (size_t)model->ops->state_size;
+    double de[6 * C], s[6 * C], *q = NULL;
+    if (ns > 0) {
+        q = malloc(sizeof(double) * ns * C);
+        GSN_CHECK(q != NULL, GSN_ERR_MEMORY, "out of memory");
+    }
+    fenv_t caller;
+    gsn_hold_exceptions(&caller);
+    int rc = GSN_OK;
+    for (size_t first = 0; first < count && rc == GSN_OK; first += C) {
+        const size_t n = count - first < C ? count - first : C;
+        gsn_material_to_columns(n, 6, strain_increment + 6 * first, 6, de, C);
+        gsn_material_to_columns(n, 6, stress + 6 * first, 6, s, C);
+        if (ns > 0)
+            gsn_material_to_columns(n, (int)ns, state + ns * first, ns, q, C);
+        rc = model->ops->update(model->context, n, C, de, s, q);
+        gsn_material_from_columns(n, 6, s, C, stress + 6 * first, 6);
+        if (ns > 0)
+            gsn_material_from_columns(n, (int)ns, q, C, state + ns * first,
+                                      ns);
+    }
+    gsn_release_exceptions(&caller);
+    free(q);
+    GSN_CALL(rc);
     return GSN_OK;
 }
 

@@ -4,6 +4,8 @@
 #include "geoscni/error.h"
 #include "geoscni/tensor.h"
 
+#include <stdlib.h>
+
 /* Points per material call: one block of columns (material.h). */
 #define STRESS_UPDATE_BLOCK ((size_t)GSN_MATERIAL_COLUMN)
 
@@ -68,48 +70,140 @@ void gsn_stress_update_rotate(const double rotation[9], double tensor[6])
     rotate_strided(rotation, 1, tensor, 1);
 }
 
-/* The strain increments (point-major, into de) and rotations (columns) of n
- * points of a block. */
-static void block_increments(size_t n, const double *restrict gradient,
-                             double *restrict de, double *restrict Q)
+/* The strain increments and rotations Q of n points from their G, all in
+ * columns (column doubles a component). */
+static void column_increments(size_t n, size_t column,
+                              const double *restrict G, double *restrict de,
+                              double *restrict Q)
 {
-    double G[9 * STRESS_UPDATE_BLOCK], de_columns[6 * STRESS_UPDATE_BLOCK];
-    gsn_material_to_columns(n, 9, gradient, 9, G, STRESS_UPDATE_BLOCK);
 #pragma omp simd
     for (size_t i = 0; i < n; ++i)
-        increment_strided(&G[i], STRESS_UPDATE_BLOCK, &de_columns[i],
-                          STRESS_UPDATE_BLOCK, &Q[i], STRESS_UPDATE_BLOCK);
-    gsn_material_from_columns(n, 6, de_columns, STRESS_UPDATE_BLOCK, de, 6);
+        increment_strided(&G[i], column, &de[i], column, &Q[i], column);
 }
 
-/* Rotates one symmetric tensor (6 doubles at `tensor`, `stride` doubles a
- * point) of n points of a block by their rotations Q (columns). */
-static void block_rotate(size_t n, const double *restrict Q,
-                         double *restrict tensor, size_t stride)
+/* Rotates one symmetric tensor (6 columns at t) of n points by their
+ * rotations Q (columns). */
+static void column_rotate(size_t n, size_t column, const double *restrict Q,
+                          double *restrict t)
 {
-    double t[6 * STRESS_UPDATE_BLOCK];
-    gsn_material_to_columns(n, 6, tensor, stride, t, STRESS_UPDATE_BLOCK);
 #pragma omp simd
     for (size_t i = 0; i < n; ++i)
-        rotate_strided(&Q[i], STRESS_UPDATE_BLOCK, &t[i], STRESS_UPDATE_BLOCK);
-    gsn_material_from_columns(n, 6, t, STRESS_UPDATE_BLOCK, tensor, stride);
+        rotate_strided(&Q[i], column, &t[i], column);
 }
 
 /* Rotates the stress (unless the model recomputes it from its state) and
- * every tensor state variable of n points of a block. */
-static void rotate_block(const struct gsn_material_ops *ops, size_t n,
-                         const double *restrict Q, double *stress,
-                         double *state)
+ * every tensor state variable of n points in columns. */
+static void rotate_columns(const struct gsn_material_ops *ops, size_t n,
+                           size_t column, const double *restrict Q,
+                           double *stress, double *state)
 {
     if (!ops->stress_from_state)
-        block_rotate(n, Q, stress, 6);
+        column_rotate(n, column, Q, stress);
     int offset = 0;
     for (int v = 0; v < ops->state_variable_count; ++v) {
         const enum gsn_state_kind kind = ops->state_variables[v].kind;
         if (kind == GSN_STATE_TENSOR)
-            block_rotate(n, Q, state + offset, (size_t)ops->state_size);
+            column_rotate(n, column, Q, state + (size_t)offset * column);
         offset += (int)kind;
     }
+}
+
+int gsn_stress_update_columns(const struct gsn_material_model *model,
+                              size_t n, size_t column,
+                              const double *restrict gradient_increment,
+                              double *restrict stress, double *restrict state,
+                              double *restrict strain_increment)
+{
+    double Q[9 * GSN_MATERIAL_MAX_COLUMN];
+    column_increments(n, column, gradient_increment, strain_increment, Q);
+    rotate_columns(model->ops, n, column, Q, stress, state);
+    GSN_CALL(model->ops->update(model->context, n, column, strain_increment,
+                                stress, state));
+    return GSN_OK;
+}
+
+/* A batch of point-major arrays in columns, GSN_MATERIAL_COLUMN points. */
+struct column_batch {
+    double G[9 * STRESS_UPDATE_BLOCK], stress[6 * STRESS_UPDATE_BLOCK];
+    double de[6 * STRESS_UPDATE_BLOCK], *state;
+};
+
+/* Points [first, first + n) of the arrays into b's columns. */
+static void batch_in(struct column_batch *b, size_t ns, size_t first,
+                     size_t n, const double *restrict gradient_increment,
+                     const double *restrict stress, const double *state)
+{
+    const size_t C = STRESS_UPDATE_BLOCK;
+    gsn_material_to_columns(n, 9, gradient_increment + 9 * first, 9, b->G, C);
+    gsn_material_to_columns(n, 6, stress + 6 * first, 6, b->stress, C);
+    if (ns > 0)
+        gsn_material_to_columns(n, (int)ns, state + ns * first, ns, b->state,
+                                C);
+}
+
+/* b's columns back into points [first, first + n) of the arrays. */
+static void batch_out(const struct column_batch *b, size_t ns, size_t first,
+                      size_t n, double *restrict stress, double *state,
+                      double *restrict strain_increment)
+{
+    const size_t C = STRESS_UPDATE_BLOCK;
+    gsn_material_from_columns(n, 6, b->stress, C, stress + 6 * first, 6);
+    if (ns > 0)
+        gsn_material_from_columns(n, (int)ns, b->state, C, state + ns * first,
+                                  ns);
+    if (strain_increment)
+        gsn_material_from_columns(n, 6, b->de, C, strain_increment + 6 * first,
+                                  6);
+}
+
+/* gsn_stress_update_split on the n points of batch b: half the strain
+ * increment, the rotation, the other half. */
+static int split_columns(const struct gsn_material_model *model, size_t n,
+                         struct column_batch *b)
+{
+    const size_t C = STRESS_UPDATE_BLOCK;
+    double Q[9 * STRESS_UPDATE_BLOCK], half[6 * STRESS_UPDATE_BLOCK];
+    column_increments(n, C, b->G, b->de, Q);
+    for (size_t a = 0; a < 6; ++a)
+        for (size_t i = 0; i < n; ++i)
+            half[a * C + i] = 0.5 * b->de[a * C + i];
+    GSN_CALL(model->ops->update(model->context, n, C, half, b->stress,
+                                b->state));
+    rotate_columns(model->ops, n, C, Q, b->stress, b->state);
+    GSN_CALL(model->ops->update(model->context, n, C, half, b->stress,
+                                b->state));
+    return GSN_OK;
+}
+
+/* Runs one of the two updates below over point-major arrays, in batches of
+ * columns, with the floating-point exceptions held (material.h). */
+static int update_rows(const struct gsn_material_model *model, int split,
+                       size_t count, const double *restrict gradient_increment,
+                       double *restrict stress, double *restrict state,
+                       double *restrict strain_increment)
+{
+    const size_t ns = (size_t)model->ops->state_size;
+    struct column_batch b;
+    b.state = ns ? malloc(sizeof(double) * ns * STRESS_UPDATE_BLOCK) : NULL;
+    GSN_CHECK(ns == 0 || b.state, GSN_ERR_MEMORY, "out of memory");
+    fenv_t caller;
+    gsn_hold_exceptions(&caller);
+    int rc = GSN_OK;
+    for (size_t first = 0; first < count && rc == GSN_OK;
+         first += STRESS_UPDATE_BLOCK) {
+        const size_t n = count - first < STRESS_UPDATE_BLOCK
+                             ? count - first
+                             : STRESS_UPDATE_BLOCK;
+        batch_in(&b, ns, first, n, gradient_increment, stress, state);
+        rc = split ? split_columns(model, n, &b)
+                   : gsn_stress_update_columns(model, n, STRESS_UPDATE_BLOCK,
+                                               b.G, b.stress, b.state, b.de);
+        batch_out(&b, ns, first, n, stress, state, strain_increment);
+    }
+    gsn_release_exceptions(&caller);
+    free(b.state);
+    GSN_CALL(rc);
+    return GSN_OK;
 }
 
 int gsn_stress_update(const struct gsn_material_model *model, size_t count,
@@ -117,30 +211,8 @@ int gsn_stress_update(const struct gsn_material_model *model, size_t count,
                       double *restrict stress, double *restrict state,
                       double *restrict strain_increment)
 {
-    const struct gsn_material_ops *ops = model->ops;
-    const size_t ns = (size_t)ops->state_size;
-    double block[6 * STRESS_UPDATE_BLOCK], Q[9 * STRESS_UPDATE_BLOCK];
-    fenv_t caller;
-    gsn_hold_exceptions(&caller);
-    int rc = GSN_OK;
-    for (size_t first = 0; first < count && rc == GSN_OK;
-         first += STRESS_UPDATE_BLOCK) {
-        size_t n = STRESS_UPDATE_BLOCK;
-        if (count - first < n)
-            n = count - first;
-        double *de = block;
-        if (strain_increment)
-            de = strain_increment + 6 * first;
-        double *q = ns ? state + ns * first : state;
-        block_increments(n, gradient_increment + 9 * first, de, Q);
-        rotate_block(ops, n, Q, stress + 6 * first, q);
-        rc = ops->update(model->context, n, de, stress + 6 * first, q);
-    }
-    gsn_release_exceptions(&caller);
-    if (rc != GSN_OK)
-        return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
-                              "ops->update(model->context, n, de, ...)");
-    return GSN_OK;
+    return update_rows(model, 0, count, gradient_increment, stress, state,
+                       strain_increment);
 }
 
 int gsn_stress_update_split(const struct gsn_material_model *model,
@@ -149,28 +221,6 @@ int gsn_stress_update_split(const struct gsn_material_model *model,
                             double *restrict stress, double *restrict state,
                             double *restrict strain_increment)
 {
-    const struct gsn_material_ops *ops = model->ops;
-    const size_t ns = (size_t)ops->state_size;
-    double half[6 * STRESS_UPDATE_BLOCK], de[6 * STRESS_UPDATE_BLOCK];
-    double Q[9 * STRESS_UPDATE_BLOCK];
-    for (size_t first = 0; first < count; first += STRESS_UPDATE_BLOCK) {
-        size_t n = STRESS_UPDATE_BLOCK;
-        if (count - first < n)
-            n = count - first;
-        double *q = ns ? state + ns * first : state;
-        double *d = strain_increment ? strain_increment + 6 * first : de;
-        block_increments(n, gradient_increment + 9 * first, d, Q);
-        for (size_t a = 0; a < 6 * n; ++a)
-            half[a] = 0.5 * d[a];
-        int rc = ops->update(model->context, n, half, stress + 6 * first, q);
-        if (rc != GSN_OK)
-            return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
-                                  "ops->update(model->context, n, half, ...)");
-        rotate_block(ops, n, Q, stress + 6 * first, q);
-        rc = ops->update(model->context, n, half, stress + 6 * first, q);
-        if (rc != GSN_OK)
-            return gsn_error_pass(rc, __FILE__, __LINE__, __func__,
-                                  "ops->update(model->context, n, half, ...)");
-    }
-    return GSN_OK;
+    return update_rows(model, 1, count, gradient_increment, stress, state,
+                       strain_increment);
 }

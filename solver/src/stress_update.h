@@ -47,6 +47,16 @@ int gsn_stress_update(const struct gsn_material_model *model, size_t count,
                       double *restrict stress, double *restrict state,
                       double *restrict strain_increment);
 
+/* gsn_stress_update on n <= GSN_MATERIAL_MAX_COLUMN points in columns
+ * (material.h: component c of point i at x[c * column + i]); the strain
+ * increments (6 columns) are required. The caller holds the floating-point
+ * exceptions (gsn_hold_exceptions). */
+int gsn_stress_update_columns(const struct gsn_material_model *model,
+                              size_t n, size_t column,
+                              const double *restrict gradient_increment,
+                              double *restrict stress, double *restrict state,
+                              double *restrict strain_increment);
+
 /* A second-order variant (not the paper's): the material step is split
  * around the rotation, half strain increment, rotation by Q, half strain
  * increment; for hypoelasticity sigma_{n+1} = Q (sigma_n + C : Delta eps / 2)
