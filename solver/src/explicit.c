@@ -625,8 +625,8 @@ int gsn_explicit_create(const struct gsn_model *m,
     }
     {
         /* 64-byte aligned, so the 4-double slots never straddle a line */
-        size_t bytes = sizeof(double) * (size_t)e->thread_count *
-                       block_work_size(e);
+        size_t bytes =
+            sizeof(double) * (size_t)e->thread_count * block_work_size(e);
         e->thread_work = aligned_alloc(64, bytes);
         GSN_CHECK_GOTO(e->thread_work, rc, GSN_ERR_MEMORY, fail,
                        "cannot allocate %zu bytes of thread work", bytes);
@@ -1209,8 +1209,7 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
         return GSN_ERR_NUMERICAL;
     /* the stress and state in columns for the material, from its rows
      * (a point that failed above has no stress from now on) */
-    gsn_material_to_columns((size_t)n, 6, &e->stress[6 * p0], 6, stress,
-                            CHUNK);
+    gsn_material_to_columns((size_t)n, 6, &e->stress[6 * p0], 6, stress, CHUNK);
     gsn_material_to_columns((size_t)n, (int)ns, &e->state[ns * p0], ns, state,
                             CHUNK);
     memcpy(old, stress, sizeof(double) * 6 * CHUNK);
@@ -1222,10 +1221,9 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
     for (int a = p0, z = p0; a < p1 && rc == GSN_OK; a = z) {
         for (z = a + 1; z < p1 && kind[z] == kind[a]; ++z)
             ;
-        rc = gsn_stress_update_columns(e->materials->model[kind[a]],
-                                       (size_t)(z - a), CHUNK, &Gc[a - p0],
-                                       &stress[a - p0], &state[a - p0],
-                                       &deps[a - p0]);
+        rc = gsn_stress_update_columns(
+            e->materials->model[kind[a]], (size_t)(z - a), CHUNK, &Gc[a - p0],
+            &stress[a - p0], &state[a - p0], &deps[a - p0]);
     }
     if (rc != GSN_OK) {
         for (int p = p0; p < p1; ++p)
@@ -1239,9 +1237,9 @@ static int main_chunk(struct gsn_explicit *e, int p0, int p1,
     for (int p = p0; p < p1; ++p) {
         const int b = p - p0;
         plastic_step[b] =
-            plastic ? state[(size_t)e->plastic_offset * CHUNK + b] -
-                          old_plastic[b]
-                    : 0.0;
+            plastic
+                ? state[(size_t)e->plastic_offset * CHUNK + b] - old_plastic[b]
+                : 0.0;
         /* the total stress; u rises with the load factor */
         const double u = e->pore_pressure ? e->pore_pressure[p] : 0.0;
         u_old[b] = e->pore_factor * u;
@@ -1469,8 +1467,7 @@ static size_t block_work_size(const struct gsn_explicit *e)
 
 static double *block_work(const struct gsn_explicit *e)
 {
-    return &e->thread_work[(size_t)omp_get_thread_num() *
-                           block_work_size(e)];
+    return &e->thread_work[(size_t)omp_get_thread_num() * block_work_size(e)];
 }
 
 /* Gathers x (n x 3) into the slots of block k, 4 doubles per slot. */

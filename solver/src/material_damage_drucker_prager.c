@@ -283,8 +283,8 @@ static int ddp_update(const void *context, size_t n, size_t column,
                 GSN_ERR_NUMERICAL, __FILE__, __LINE__, __func__,
                 "damage_drucker_prager: non-finite stress at point %zu "
                 "of the batch (strain increment %g %g %g %g %g %g)",
-                i, d[0], d[column], d[2 * column], d[3 * column],
-                d[4 * column], d[5 * column]);
+                i, d[0], d[column], d[2 * column], d[3 * column], d[4 * column],
+                d[5 * column]);
         }
     }
     return GSN_OK;

@@ -149,8 +149,7 @@ int gsn_material_update(const struct gsn_material_model *model, size_t count,
         rc = model->ops->update(model->context, n, C, de, s, q);
         gsn_material_from_columns(n, 6, s, C, stress + 6 * first, 6);
         if (ns > 0)
-            gsn_material_from_columns(n, (int)ns, q, C, state + ns * first,
-                                      ns);
+            gsn_material_from_columns(n, (int)ns, q, C, state + ns * first, ns);
     }
     gsn_release_exceptions(&caller);
     free(q);

@@ -72,9 +72,8 @@ void gsn_stress_update_rotate(const double rotation[9], double tensor[6])
 
 /* The strain increments and rotations Q of n points from their G, all in
  * columns (column doubles a component). */
-static void column_increments(size_t n, size_t column,
-                              const double *restrict G, double *restrict de,
-                              double *restrict Q)
+static void column_increments(size_t n, size_t column, const double *restrict G,
+                              double *restrict de, double *restrict Q)
 {
 #pragma omp simd
     for (size_t i = 0; i < n; ++i)
@@ -108,8 +107,8 @@ static void rotate_columns(const struct gsn_material_ops *ops, size_t n,
     }
 }
 
-int gsn_stress_update_columns(const struct gsn_material_model *model,
-                              size_t n, size_t column,
+int gsn_stress_update_columns(const struct gsn_material_model *model, size_t n,
+                              size_t column,
                               const double *restrict gradient_increment,
                               double *restrict stress, double *restrict state,
                               double *restrict strain_increment)
@@ -129,8 +128,8 @@ struct column_batch {
 };
 
 /* Points [first, first + n) of the arrays into b's columns. */
-static void batch_in(struct column_batch *b, size_t ns, size_t first,
-                     size_t n, const double *restrict gradient_increment,
+static void batch_in(struct column_batch *b, size_t ns, size_t first, size_t n,
+                     const double *restrict gradient_increment,
                      const double *restrict stress, const double *state)
 {
     const size_t C = STRESS_UPDATE_BLOCK;
@@ -167,11 +166,11 @@ static int split_columns(const struct gsn_material_model *model, size_t n,
     for (size_t a = 0; a < 6; ++a)
         for (size_t i = 0; i < n; ++i)
             half[a * C + i] = 0.5 * b->de[a * C + i];
-    GSN_CALL(model->ops->update(model->context, n, C, half, b->stress,
-                                b->state));
+    GSN_CALL(
+        model->ops->update(model->context, n, C, half, b->stress, b->state));
     rotate_columns(model->ops, n, C, Q, b->stress, b->state);
-    GSN_CALL(model->ops->update(model->context, n, C, half, b->stress,
-                                b->state));
+    GSN_CALL(
+        model->ops->update(model->context, n, C, half, b->stress, b->state));
     return GSN_OK;
 }
 

@@ -51,8 +51,8 @@ int gsn_stress_update(const struct gsn_material_model *model, size_t count,
  * (material.h: component c of point i at x[c * column + i]); the strain
  * increments (6 columns) are required. The caller holds the floating-point
  * exceptions (gsn_hold_exceptions). */
-int gsn_stress_update_columns(const struct gsn_material_model *model,
-                              size_t n, size_t column,
+int gsn_stress_update_columns(const struct gsn_material_model *model, size_t n,
+                              size_t column,
                               const double *restrict gradient_increment,
                               double *restrict stress, double *restrict state,
                               double *restrict strain_increment);
