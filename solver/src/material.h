@@ -16,8 +16,10 @@
  *   with the stress by the objective update (stress_update.h).
  * - strain increment: 6 doubles, Voigt, TENSOR shear (d eps_xy, not
  *   d gamma_xy), dimensionless.
- * Arrays of a batch are point-major: point i's stress is stress[6*i + k],
- * its state state[state_size*i + k].
+ * The solver keeps them point-major: point i's stress is stress[6*i + k],
+ * its state state[state_size*i + k]. A model's update works on a batch in
+ * columns (component k of point i at x[k * column + i]), where its loop
+ * over the points vectorizes; gsn_material_update takes point-major arrays.
  *
  * References: seed paper (../shared/paper/seed-paper.txt) eqs. (6)-(8) and
  * Fig. 3; Simo & Ju 1987 (elastic-damage predictor, plastic corrector);
