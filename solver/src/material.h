@@ -125,44 +125,37 @@ static inline void gsn_copy_transposed_4x4(const double *restrict src, size_t S,
 #endif
 }
 
+/* dst[j * D + k] = src[k * S + j] for k < K, j < J, by 4 x 4 blocks. */
+static inline void gsn_copy_transposed(size_t K, size_t J,
+                                       const double *restrict src, size_t S,
+                                       double *restrict dst, size_t D)
+{
+    size_t k = 0;
+    for (; k + 4 <= K; k += 4) {
+        size_t j = 0;
+        for (; j + 4 <= J; j += 4)
+            gsn_copy_transposed_4x4(src + k * S + j, S, dst + j * D + k, D);
+        for (; j < J; ++j)
+            for (size_t q = k; q < k + 4; ++q)
+                dst[j * D + q] = src[q * S + j];
+    }
+    for (; k < K; ++k)
+        for (size_t j = 0; j < J; ++j)
+            dst[j * D + k] = src[k * S + j];
+}
+
 static inline void
 gsn_material_to_columns(size_t n, int width, const double *restrict rows,
                         size_t stride, double *restrict columns, size_t column)
 {
-    const size_t w = (size_t)width;
-    size_t i = 0;
-    for (; i + 4 <= n; i += 4) {
-        size_t c = 0;
-        for (; c + 4 <= w; c += 4)
-            gsn_copy_transposed_4x4(rows + stride * i + c, stride,
-                                    columns + c * column + i, column);
-        for (; c < w; ++c)
-            for (size_t k = i; k < i + 4; ++k)
-                columns[c * column + k] = rows[stride * k + c];
-    }
-    for (; i < n; ++i)
-        for (size_t c = 0; c < w; ++c)
-            columns[c * column + i] = rows[stride * i + c];
+    gsn_copy_transposed(n, (size_t)width, rows, stride, columns, column);
 }
 
 static inline void
 gsn_material_from_columns(size_t n, int width, const double *restrict columns,
                           size_t column, double *restrict rows, size_t stride)
 {
-    const size_t w = (size_t)width;
-    size_t i = 0;
-    for (; i + 4 <= n; i += 4) {
-        size_t c = 0;
-        for (; c + 4 <= w; c += 4)
-            gsn_copy_transposed_4x4(columns + c * column + i, column,
-                                    rows + stride * i + c, stride);
-        for (; c < w; ++c)
-            for (size_t k = i; k < i + 4; ++k)
-                rows[stride * k + c] = columns[c * column + k];
-    }
-    for (; i < n; ++i)
-        for (size_t c = 0; c < w; ++c)
-            rows[stride * i + c] = columns[c * column + i];
+    gsn_copy_transposed((size_t)width, n, columns, column, rows, stride);
 }
 
 /* Loops over columns compute every case of a select in every lane and
