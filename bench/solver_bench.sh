@@ -34,13 +34,18 @@
 # (gsn_explicit_step_bytes) against STREAM triad measured on as many threads
 # (bench/stream.c) with the roof it puts on the rate, and the peak resident
 # memory a particle (GNU time).
+# WAIT_POLICY=passive (or active) runs geoscni with that OMP_WAIT_POLICY;
+# unset, geoscni waits at its barriers as users run it (its own short spin,
+# GOMP_SPINCOUNT=3000). Before 2026-12-08 the bench always set passive,
+# which on a Zen 3 VM made each of the step's parallel regions cost ~85 us
+# instead of ~8: 6% of Slope I's step (docs/solver.md, "Speed").
 # MODEL=PATH solves that model.h5 instead of making one: to compare two
 # builds on one model (gmsh's HXT meshes differ from run to run, and so do
 # the costs they give; copy the first run's with KEEP_MODEL=PATH).
 # Usage: bench/solver_bench.sh [BUILD_DIR] [RUNS] [STEPS] [CASE] [INTEGRATION]
 #        (default build, 3, 300, geometries/slope_I.yaml, the case's)
 #        THREADS="1 2" (default), LOADED, WINDOW_CUT, BUILDS, UPDATE_EVERY,
-#        MODEL and KEEP_MODEL (unset) in the environment
+#        WAIT_POLICY, MODEL and KEEP_MODEL (unset) in the environment
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-build}
@@ -49,6 +54,7 @@ steps=${3:-300}
 case_file=${4:-$root/geometries/slope_I.yaml}
 integration=${5:-}
 thread_counts=${THREADS:-1 2}
+wait_policy=${WAIT_POLICY:+OMP_WAIT_POLICY=$WAIT_POLICY}
 # the geoscni of build folder $1 (under the repository, or absolute)
 geoscni_of() {
     case $1 in
@@ -134,7 +140,7 @@ for threads in $thread_counts; do
             cut=${v##*@}
             rm -rf "$work/out"
             cp -r "$work/start.$cut" "$work/out"
-            OMP_WAIT_POLICY=passive /usr/bin/time -f "peak %M KB" "$(geoscni_of "${v%@*}")" solve "$work/case.$cut.yaml" -o "$work/out" -j "$threads" \
+            env $wait_policy /usr/bin/time -f "peak %M KB" "$(geoscni_of "${v%@*}")" solve "$work/case.$cut.yaml" -o "$work/out" -j "$threads" \
                 $restart >"$work/log" 2>&1 || {
                 echo "  $threads thread(s)$(label "$v"), run $i failed: $(grep 'error:' "$work/log")" >&2
                 exit 1
