@@ -831,8 +831,8 @@ static inline void entries_gradient(const struct gsn_point_blocks *b, int k,
          * leaves the loop waiting (10% of the pass on Slope I). */
         __builtin_prefetch(&g[3 * k + 384]);
         __builtin_prefetch(&slot[k + 512]);
-        const gsn_v4 u = ((const gsn_v4 *)u4)[slot[k]];
-        const gsn_v4 v = ((const gsn_v4 *)u4)[slot[k + 1]];
+        const gsn_v4 u = *(const gsn_v4 *)&u4[4 * slot[k]];
+        const gsn_v4 v = *(const gsn_v4 *)&u4[4 * slot[k + 1]];
         c0 += u * g[3 * k];
         c1 += u * g[3 * k + 1];
         c2 += u * g[3 * k + 2];
@@ -841,7 +841,7 @@ static inline void entries_gradient(const struct gsn_point_blocks *b, int k,
         d2 += v * g[3 * k + 5];
     }
     if (k < end) {
-        const gsn_v4 u = ((const gsn_v4 *)u4)[slot[k]];
+        const gsn_v4 u = *(const gsn_v4 *)&u4[4 * slot[k]];
         c0 += u * g[3 * k];
         c1 += u * g[3 * k + 1];
         c2 += u * g[3 * k + 2];
@@ -894,7 +894,7 @@ static inline void fused_row_gradient(const struct gsn_point_blocks *b, int r,
     for (int k = k0; k < middle; ++k, d += 6) {
         __builtin_prefetch(&g[3 * k + 384]);
         __builtin_prefetch(&d[768]);
-        const gsn_v4 u = ((const gsn_v4 *)u4)[slot[k]];
+        const gsn_v4 u = *(const gsn_v4 *)&u4[4 * slot[k]];
         c0 += u * g[3 * k];
         c1 += u * g[3 * k + 1];
         c2 += u * g[3 * k + 2];
@@ -961,7 +961,7 @@ static inline void entries_scatter(const struct gsn_point_blocks *b, int k,
     const gsn_v4 p1 = {P[1], P[4], P[7], 0.0};
     const gsn_v4 p2 = {P[2], P[5], P[8], 0.0};
     for (; k < end; ++k) {
-        gsn_v4 *f = (gsn_v4 *)f4 + slot[k];
+        gsn_v4 *f = (gsn_v4 *)&f4[4 * slot[k]];
         *f += p0 * g[3 * k] + p1 * g[3 * k + 1] + p2 * g[3 * k + 2];
     }
 }
@@ -995,7 +995,7 @@ static inline void fused_row_scatter(const struct gsn_point_blocks *b, int r,
                         C[(size_t)(3 * c + 1) * stride],
                         C[(size_t)(3 * c + 2) * stride], 0.0};
     for (int k = k0; k < middle; ++k, d += 6) {
-        gsn_v4 *f = (gsn_v4 *)f4 + slot[k];
+        gsn_v4 *f = (gsn_v4 *)&f4[4 * slot[k]];
         *f += p0 * g[3 * k] + p1 * g[3 * k + 1] + p2 * g[3 * k + 2] +
               q[0] * d[0] + q[1] * d[1] + q[2] * d[2] + q[3] * d[3] +
               q[4] * d[4] + q[5] * d[5];
