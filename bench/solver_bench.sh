@@ -36,9 +36,9 @@
 # memory a particle (GNU time).
 # WAIT_POLICY=passive (or active) runs geoscni with that OMP_WAIT_POLICY;
 # unset, geoscni waits at its barriers as users run it (its own short spin,
-# GOMP_SPINCOUNT=3000). Before 2026-12-08 the bench always set passive,
-# which on a Zen 3 VM made each of the step's parallel regions cost ~85 us
-# instead of ~8: 6% of Slope I's step (docs/solver.md, "Speed").
+# GOMP_SPINCOUNT=3000). Until 2026-12-07 the bench always set passive:
+# on a Zen 3 VM plain SCNI then ran 1.12 times slower on 2 threads
+# (docs/solver.md, "2026-12-07, midnight").
 # MODEL=PATH solves that model.h5 instead of making one: to compare two
 # builds on one model (gmsh's HXT meshes differ from run to run, and so do
 # the costs they give; copy the first run's with KEEP_MODEL=PATH).
