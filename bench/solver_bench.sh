@@ -22,7 +22,10 @@
 # absolute) the same way: their runs alternate on the same model and, with
 # LOADED, restart from the same state (loaded by the first build); with
 # WINDOW_CUT, every build runs every cut. BUILD_DIR then only names the
-# folder whose stream program measures STREAM.
+# folder whose stream program measures STREAM. Besides the ratio of the
+# medians, each run is set against the first variant's run of its round:
+# the median of those ratios and how many are above 1 (on a host whose
+# speed drifts by 20%, steadier than the medians' ratio).
 # UPDATE_EVERY=K adds a reference-configuration update every K steps (issue
 # 15, point 4): the rate then includes them, and each run's line their count
 # and share of the solve. Without UPDATE_EVERY the rate leaves out the
@@ -175,17 +178,29 @@ for threads in $thread_counts; do
     triad=
     [ -x "$stream" ] && triad=$("$stream" "$threads" | sed -n 's/.*: \([0-9.]*\) GB\/s$/\1/p')
     first=
+    first_key=
     for v in $variants; do
         k=$(key "$v")
+        [ -n "$first_key" ] || first_key=$k
+        # each run against the first variant's run of the same round (they
+        # alternate, so the host's drift falls on both): the median of those
+        # ratios and how many are above 1, steadier than the medians' ratio
+        pairs=
+        [ "$k" = "$first_key" ] ||
+            pairs=$(paste "$work/rates.$threads.$first_key" "$work/rates.$threads.$k" |
+                awk '{ print $2 / $1 }' | sort -g |
+                awk '{ r[NR] = $1; if ($1 > 1) up++ } END { printf "%.2f %d %d", r[int((NR + 1) / 2)], up, NR }')
         median=$(sort -g "$work/rates.$threads.$k" | sed -n "$(((runs + 1) / 2))p")
         one=$(sort -g "$work/rates.1.$k" 2>/dev/null | sed -n "$(((runs + 1) / 2))p")
         [ -n "$first" ] || first=$median
         awk -v t="$threads" -v m="$median" -v one="$one" -v kb="$(cat "$work/bytes.$k")" \
             -v s="${triad:-0}" -v peak="$(cat "$work/peak.$k")" -v n="$particles" \
-            -v name="$(label "$v")" -v first="$first" 'BEGIN {
+            -v name="$(label "$v")" -v first="$first" -v pairs="$pairs" 'BEGIN {
             line = sprintf("median, %d thread(s)%s: %.3g particle-steps/s", t, name, m)
             if (name != "" && m != first)
                 line = line sprintf(" (%.2f x the first'"'"'s)", m / first)
+            if (split(pairs, p, " ") == 3)
+                line = line sprintf(" (run by run: median %.2f x the first'"'"'s, %d of %d above)", p[1], p[2], p[3])
             if (one != "" && t > 1)
                 line = line sprintf(" (parallel efficiency %.2f)", m / (t * one))
             if (kb > 0 && s > 0)
