@@ -233,12 +233,12 @@ static double median(double *x, int n)
 /* The median over step counts (0.8 of the stable step, then one step more
  * each): three for the elastic runs; seven with the soil, where softening
  * makes the run chaotic and the content moves by 10 to 15% from one step
- * count to the next (MSCNI at 1208 to 1214 steps: 0.0363, 0.0333, 0.0335,
- * 0.0322, 0.0309, 0.0326, 0.0302), so that a median of three hangs on the
- * round-off: a boundary solve ordered otherwise (CHOLMOD's nested
- * dissection, the same values to round-off) gave 0.0401, 0.0315, 0.0389,
- * 0.0301, 0.0301, 0.0355, 0.0313, and SCNI / MSCNI 2.42 from three, 2.99
- * from seven (2.81 and 2.89 as built). */
+ * count to the next, so that a median of three hangs on the round-off:
+ * MSCNI at 1208 to 1214 steps gave 0.0401, 0.0315, 0.0389, 0.0301,
+ * 0.0301, 0.0355, 0.0313 with the boundary matrices ordered by nested
+ * dissection (constraint.c) and 0.0363, 0.0333, 0.0335, 0.0322, 0.0309,
+ * 0.0326, 0.0302 with AMD's order before (the same values to round-off):
+ * SCNI / MSCNI 2.42 and 2.81 from three, 2.98 and 2.89 from seven. */
 static double pressed_median(struct gsn_case *c, enum gsn_stabilization stab,
                              int soil, double *half)
 {
@@ -319,9 +319,9 @@ int main(void)
      * (docs/failure.md): softening grows SCNI's checkerboards well beyond
      * the elastic run's (5.3x); MSCNI's sub-cells yield with the soil
      * (docs/solver.md, "Stabilization"), so its checkerboards grow too, but
-     * about half as much (2.9-3.0x; 1.5x when the sub-cells stayed
+     * about half as much (2.9x; 1.5x when the sub-cells stayed
      * elastic, at the price of a strip-footing limit load 20% too high),
-     * and SCNI ends with several times MSCNI's (2.9-3.0x; medians of seven
+     * and SCNI ends with several times MSCNI's (3.0x; medians of seven
      * step counts, pressed_median). */
     TEST_TRUE(content[1] > 2.5 * content[0]);
     TEST_TRUE(content[3] / content[2] < 0.7 * (content[1] / content[0]));
