@@ -19,6 +19,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <math.h>
+#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -130,13 +131,11 @@ struct post_mirror {
     double offset;       /* m */
     int half_count;      /* particles of the half model (of results.h5) */
     int *image;          /* half_count */
-    struct gsn_frame in; /* a frame of the half model, read from the file */
 };
 
 static void post_mirror_free(struct post_mirror *mirror)
 {
     free(mirror->image);
-    gsn_frame_free(&mirror->in);
     memset(mirror, 0, sizeof *mirror);
 }
 
@@ -215,7 +214,6 @@ static int post_mirror_create(const char *model_path, const char *name,
     mesh->point_count = total;
     mesh->tetrahedron_count = 2 * t;
     post_mesh_bounds(mesh);
-    GSN_CALL_GOTO(gsn_frame_allocate(&mirror->in, n), rc, done);
     mirror->active = 1;
 done:
     free(on_plane);
@@ -226,11 +224,11 @@ done:
  * fields (signs: vector component `axis` and the shear stresses
  * with exactly one index `axis` change sign; scalars are even). */
 static void post_mirror_frame(const struct post_mirror *mirror,
+                              const struct gsn_frame *in,
                               struct gsn_frame *out)
 {
     static const int voigt_pair[6][2] = {{0, 0}, {1, 1}, {2, 2},
                                          {0, 1}, {1, 2}, {0, 2}};
-    const struct gsn_frame *in = &mirror->in;
     int a = mirror->axis;
     out->time = in->time;
     out->step = in->step;
@@ -935,12 +933,98 @@ static int post_grid(const struct post_mesh *mesh,
 struct post_state {
     hid_t results;
     struct post_mesh mesh;
-    struct gsn_frame frame;
-    struct gsn_vtk_grid *grid;
     struct gsn_display display;
     struct gsn_case *c;
     struct post_mirror mirror;
 };
+
+/* Frame k of results.h5 into frame (through the mirror's half frame `half`
+ * where the body is mirrored), and its grid. HDF5 is called by one thread
+ * at a time (Debian's library is not built thread-safe). */
+static int post_frame_grid(struct post_state *s, int k, struct gsn_frame *half,
+                           struct gsn_frame *frame, struct gsn_vtk_grid **grid)
+{
+    int rc;
+#pragma omp critical(post_hdf5)
+    rc = gsn_results_frame_read(s->results, k, s->mirror.active ? half : frame);
+    GSN_CALL(rc);
+    if (s->mirror.active)
+        post_mirror_frame(&s->mirror, half, frame);
+    return post_grid(&s->mesh, frame, grid);
+}
+
+/* One thread's part of post_frames: the pictures first where `folder` is
+ * given, then frames taken from *next until none is left; a failure stops
+ * every thread at its next frame (*failed). */
+static int post_frames_thread(struct post_state *s, const char *outdir,
+                              int count, const char *folder,
+                              const char *case_name, int *written,
+                              unsigned *noted, int *next, int *failed)
+{
+    struct gsn_frame frame, half;
+    struct gsn_vtk_grid *grid = NULL;
+    memset(&frame, 0, sizeof frame);
+    memset(&half, 0, sizeof half);
+    int rc = gsn_frame_allocate(&frame, s->mesh.point_count);
+    if (rc == GSN_OK && s->mirror.active)
+        rc = gsn_frame_allocate(&half, s->mirror.half_count);
+    for (int k = 0; folder && rc == GSN_OK && k < count; ++k) {
+        if (!post_is_picture_frame(k, count) && k != count - 1)
+            continue;
+        rc = post_frame_grid(s, k, &half, &frame, &grid);
+        if (rc == GSN_OK)
+            rc = post_frame_pictures(grid, &s->mesh, &frame, k, count, folder,
+                                     case_name, written, noted);
+        gsn_vtk_grid_destroy(&grid);
+    }
+    char path[GSN_PATH_SIZE];
+    for (;;) {
+        int k, stop;
+#pragma omp atomic read
+        stop = *failed;
+        if (rc != GSN_OK || stop)
+            break;
+#pragma omp atomic capture
+        k = (*next)++;
+        if (k >= count)
+            break;
+        rc = post_frame_grid(s, k, &half, &frame, &grid);
+        if (rc == GSN_OK)
+            rc = post_frame_path(outdir, k, path, sizeof path);
+        if (rc == GSN_OK)
+            rc = post_vtu_write(grid, path);
+        gsn_vtk_grid_destroy(&grid);
+    }
+    if (rc != GSN_OK) {
+#pragma omp atomic write
+        *failed = 1;
+    }
+    gsn_frame_free(&frame);
+    gsn_frame_free(&half);
+    return rc;
+}
+
+/* Writes every frame's .vtu and, where `folder` is given, the pictures:
+ * the frames in parallel (zlib's compression is most of post's time), the
+ * pictures on the first thread (VTK renders on one thread) while the
+ * others write. The files do not depend on the thread count. */
+static int post_frames(struct post_state *s, const char *outdir, int count,
+                       const char *folder, const char *case_name,
+                       int *written, unsigned *noted)
+{
+    int next = 0, failed = 0, rc = GSN_OK;
+#pragma omp parallel
+    {
+        int own = post_frames_thread(
+            s, outdir, count, omp_get_thread_num() == 0 ? folder : NULL,
+            case_name, written, noted, &next, &failed);
+        if (own != GSN_OK)
+#pragma omp critical(post_rc)
+            if (rc == GSN_OK)
+                rc = own;
+    }
+    return rc;
+}
 
 static int post_run(const char *outdir, const struct gsn_post_options *o,
                     struct post_state *s)
@@ -1017,27 +1101,12 @@ static int post_run(const char *outdir, const struct gsn_post_options *o,
         GSN_CALL(post_remove_old_pictures(path, 1));
     }
 
-    /* One frame at a time: read, write, free. */
-    int picture_count = 0, plot_count = 0;
+    int picture_count = 0;
     unsigned noted = 0;
-    GSN_CALL(gsn_frame_allocate(&s->frame, s->mesh.point_count));
-    for (int k = 0; k < count; ++k) {
-        if (s->mirror.active) {
-            GSN_CALL(gsn_results_frame_read(s->results, k, &s->mirror.in));
-            post_mirror_frame(&s->mirror, &s->frame);
-        } else {
-            GSN_CALL(gsn_results_frame_read(s->results, k, &s->frame));
-        }
-        GSN_CALL(post_grid(&s->mesh, &s->frame, &s->grid));
-        GSN_CALL(post_frame_path(outdir, k, path, sizeof path));
-        GSN_CALL(post_vtu_write(s->grid, path));
-        if (pictures)
-            GSN_CALL(post_frame_pictures(s->grid, &s->mesh, &s->frame, k, count,
-                                         picture_folder, case_name,
-                                         &picture_count, &noted));
-        gsn_vtk_grid_destroy(&s->grid);
-    }
+    GSN_CALL(post_frames(s, outdir, count, pictures ? picture_folder : NULL,
+                         case_name, &picture_count, &noted));
     post_remove_stale_frames(outdir, count);
+    int plot_count = 0;
     if (pictures)
         GSN_CALL(post_plots(outdir, s->c, have_case, case_name, &plot_count));
     /* the .pvd last: its stamp says post is done (gsn_post_up_to_date) */
@@ -1147,8 +1216,6 @@ int gsn_post_run(const char *outdir, const struct gsn_post_options *options)
     s.c = calloc(1, sizeof *s.c); /* large: not on the stack */
     GSN_CHECK(s.c != NULL, GSN_ERR_MEMORY, "cannot allocate a case");
     int rc = post_run(outdir, options ? options : &defaults, &s);
-    gsn_vtk_grid_destroy(&s.grid);
-    gsn_frame_free(&s.frame);
     post_mesh_free(&s.mesh);
     post_mirror_free(&s.mirror);
     gsn_h5_close(&s.results);
