@@ -128,9 +128,9 @@ static int post_mesh_read(const char *path, struct post_mesh *mesh)
 struct post_mirror {
     int active;
     int axis;
-    double offset;       /* m */
-    int half_count;      /* particles of the half model (of results.h5) */
-    int *image;          /* half_count */
+    double offset;  /* m */
+    int half_count; /* particles of the half model (of results.h5) */
+    int *image;     /* half_count */
 };
 
 static void post_mirror_free(struct post_mirror *mirror)
@@ -224,8 +224,7 @@ done:
  * fields (signs: vector component `axis` and the shear stresses
  * with exactly one index `axis` change sign; scalars are even). */
 static void post_mirror_frame(const struct post_mirror *mirror,
-                              const struct gsn_frame *in,
-                              struct gsn_frame *out)
+                              const struct gsn_frame *in, struct gsn_frame *out)
 {
     static const int voigt_pair[6][2] = {{0, 0}, {1, 1}, {2, 2},
                                          {0, 1}, {1, 2}, {0, 2}};
@@ -1009,15 +1008,15 @@ static int post_frames_thread(struct post_state *s, const char *outdir,
  * pictures on the first thread (VTK renders on one thread) while the
  * others write. The files do not depend on the thread count. */
 static int post_frames(struct post_state *s, const char *outdir, int count,
-                       const char *folder, const char *case_name,
-                       int *written, unsigned *noted)
+                       const char *folder, const char *case_name, int *written,
+                       unsigned *noted)
 {
     int next = 0, failed = 0, rc = GSN_OK;
 #pragma omp parallel
     {
-        int own = post_frames_thread(
-            s, outdir, count, omp_get_thread_num() == 0 ? folder : NULL,
-            case_name, written, noted, &next, &failed);
+        int own = post_frames_thread(s, outdir, count,
+                                     omp_get_thread_num() == 0 ? folder : NULL,
+                                     case_name, written, noted, &next, &failed);
         if (own != GSN_OK)
 #pragma omp critical(post_rc)
             if (rc == GSN_OK)
