@@ -5,7 +5,9 @@
  * field; every file is renamed into place (no .part left), stale frame
  * files of a longer earlier run are removed; a folder without results.h5
  * or model.h5, a results.h5 of another schema version and a model of
- * another run are input errors (exit status 2) with a message; and the
+ * another run are input errors (exit status 2) with a message; the frames,
+ * written in parallel, are the same bytes on 1 and 3 threads, and a frame
+ * missing from results.h5 stops post with an error on any thread; and the
  * history.csv reader. */
 #include "history.h"
 #include "synthetic.h"
@@ -14,6 +16,7 @@
 #include "geoscni/post.h"
 
 #include <dirent.h>
+#include <omp.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -133,6 +136,77 @@ static void test_output(void)
     TEST_INT(gsn_post_run(folder, &NO_PICTURES), GSN_OK);
     TEST_TRUE(file_exists(folder, "plain_run.pvd"));
     TEST_INT(run_checker(folder, "plain_run"), 0);
+}
+
+/* The bytes of file `name` in folder (malloc'd, *size set), or NULL. */
+static char *file_bytes(const char *folder, const char *name, long *size)
+{
+    char path[GSN_PATH_SIZE];
+    if (gsn_path_join(path, sizeof path, folder, name) != GSN_OK)
+        return NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *bytes = NULL;
+    if (fseek(f, 0, SEEK_END) == 0 && (*size = ftell(f)) >= 0 &&
+        fseek(f, 0, SEEK_SET) == 0 && (bytes = malloc((size_t)*size + 1)) &&
+        fread(bytes, 1, (size_t)*size, f) != (size_t)*size) {
+        free(bytes);
+        bytes = NULL;
+    }
+    fclose(f);
+    return bytes;
+}
+
+/* post writes its frames in parallel (post.c post_frames): the same files
+ * on 1 and on 3 threads (more threads than this machine's 2 cores, so that
+ * the frames are taken in varying order), and a frame missing from
+ * results.h5 fails the run with its error whichever thread reads it. */
+static void test_threads(void)
+{
+    enum { MANY = 9 };
+    char folder[GSN_PATH_SIZE / 2], path[GSN_PATH_SIZE];
+    folder_path(folder, sizeof folder, "threads");
+    TEST_INT(gsn_folder_prepare(folder), GSN_OK);
+    TEST_INT(synthetic_folder_write(folder, MANY, "box_case"), GSN_OK);
+    char *one[MANY];
+    long one_size[MANY];
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    TEST_INT(gsn_post_run(folder, &NO_PICTURES), GSN_OK);
+    for (int k = 0; k < MANY; ++k) {
+        char name[64];
+        snprintf(name, sizeof name, "vtu/frame_%04d.vtu", k);
+        one[k] = file_bytes(folder, name, &one_size[k]);
+        TEST_TRUE(one[k] != NULL);
+    }
+    omp_set_num_threads(3);
+    TEST_INT(gsn_post_run(folder, &NO_PICTURES), GSN_OK);
+    for (int k = 0; k < MANY; ++k) {
+        char name[64];
+        long size = -1;
+        snprintf(name, sizeof name, "vtu/frame_%04d.vtu", k);
+        char *three = file_bytes(folder, name, &size);
+        TEST_TRUE(three && one[k] && size == one_size[k] &&
+                  !memcmp(three, one[k], (size_t)size));
+        free(three);
+        free(one[k]);
+    }
+    TEST_INT(run_checker(folder, "box_case"), 0);
+
+    /* frame 5 removed from results.h5: an error, not a crash or a hang */
+    TEST_INT(gsn_path_join(path, sizeof path, folder, "results.h5"), GSN_OK);
+    hid_t file = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    TEST_TRUE(file >= 0);
+    TEST_TRUE(H5Ldelete(file, "frames/000005", H5P_DEFAULT) >= 0);
+    H5Fclose(file);
+    int rc = gsn_post_run(folder, &NO_PICTURES);
+    TEST_TRUE(rc != GSN_OK);
+    TEST_TRUE(strstr(gsn_error_message(), "000005") != NULL);
+    if (!strstr(gsn_error_message(), "000005"))
+        fprintf(stderr, "message: %s\n", gsn_error_message());
+    gsn_error_clear();
+    omp_set_num_threads(threads);
 }
 
 static void test_errors(void)
@@ -263,6 +337,7 @@ int main(void)
     test_history();
     test_history_signed_curve();
     test_output();
+    test_threads();
     test_errors();
     char command[GSN_PATH_SIZE + 16];
     snprintf(command, sizeof command, "rm -rf '%s'", root);
