@@ -937,11 +937,14 @@ struct post_state {
     struct post_mirror mirror;
 };
 
-/* Frame k of results.h5 into frame (through the mirror's half frame `half`
- * where the body is mirrored), and its grid. HDF5 is called by one thread
- * at a time (Debian's library is not built thread-safe). */
-static int post_frame_grid(struct post_state *s, int k, struct gsn_frame *half,
-                           struct gsn_frame *frame, struct gsn_vtk_grid **grid)
+/* Frame k: read from results.h5 into frame (through the mirror's half frame
+ * `half` where the body is mirrored), its .vtu written, and its pictures
+ * rendered where `folder` is given. HDF5 is called by one thread at a time
+ * (Debian's library is not built thread-safe). */
+static int post_frame_out(struct post_state *s, const char *outdir, int k,
+                          int count, struct gsn_frame *half,
+                          struct gsn_frame *frame, const char *folder,
+                          const char *case_name, int *written, unsigned *noted)
 {
     int rc;
 #pragma omp critical(post_hdf5)
@@ -949,34 +952,39 @@ static int post_frame_grid(struct post_state *s, int k, struct gsn_frame *half,
     GSN_CALL(rc);
     if (s->mirror.active)
         post_mirror_frame(&s->mirror, half, frame);
-    return post_grid(&s->mesh, frame, grid);
+    struct gsn_vtk_grid *grid = NULL;
+    char path[GSN_PATH_SIZE];
+    rc = post_grid(&s->mesh, frame, &grid);
+    if (rc == GSN_OK)
+        rc = post_frame_path(outdir, k, path, sizeof path);
+    if (rc == GSN_OK)
+        rc = post_vtu_write(grid, path);
+    if (rc == GSN_OK && folder)
+        rc = post_frame_pictures(grid, &s->mesh, frame, k, count, folder,
+                                 case_name, written, noted);
+    gsn_vtk_grid_destroy(&grid);
+    return rc;
 }
 
-/* One thread's part of post_frames: the pictures first where `folder` is
- * given, then frames taken from *next until none is left; a failure stops
- * every thread at its next frame (*failed). */
+/* One thread's part of post_frames: where `render`, the picture frames
+ * (their .vtu and pictures) first; then the other frames, taken from *next
+ * until none is left; a failure stops every thread at its next frame
+ * (*failed). */
 static int post_frames_thread(struct post_state *s, const char *outdir,
-                              int count, const char *folder,
+                              int count, const char *folder, int render,
                               const char *case_name, int *written,
                               unsigned *noted, int *next, int *failed)
 {
     struct gsn_frame frame, half;
-    struct gsn_vtk_grid *grid = NULL;
     memset(&frame, 0, sizeof frame);
     memset(&half, 0, sizeof half);
     int rc = gsn_frame_allocate(&frame, s->mesh.point_count);
     if (rc == GSN_OK && s->mirror.active)
         rc = gsn_frame_allocate(&half, s->mirror.half_count);
-    for (int k = 0; folder && rc == GSN_OK && k < count; ++k) {
-        if (!post_is_picture_frame(k, count) && k != count - 1)
-            continue;
-        rc = post_frame_grid(s, k, &half, &frame, &grid);
-        if (rc == GSN_OK)
-            rc = post_frame_pictures(grid, &s->mesh, &frame, k, count, folder,
-                                     case_name, written, noted);
-        gsn_vtk_grid_destroy(&grid);
-    }
-    char path[GSN_PATH_SIZE];
+    for (int k = 0; folder && render && rc == GSN_OK && k < count; ++k)
+        if (post_is_picture_frame(k, count))
+            rc = post_frame_out(s, outdir, k, count, &half, &frame, folder,
+                                case_name, written, noted);
     for (;;) {
         int k, stop;
 #pragma omp atomic read
@@ -987,12 +995,9 @@ static int post_frames_thread(struct post_state *s, const char *outdir,
         k = (*next)++;
         if (k >= count)
             break;
-        rc = post_frame_grid(s, k, &half, &frame, &grid);
-        if (rc == GSN_OK)
-            rc = post_frame_path(outdir, k, path, sizeof path);
-        if (rc == GSN_OK)
-            rc = post_vtu_write(grid, path);
-        gsn_vtk_grid_destroy(&grid);
+        if (!folder || !post_is_picture_frame(k, count))
+            rc = post_frame_out(s, outdir, k, count, &half, &frame, NULL,
+                                case_name, written, noted);
     }
     if (rc != GSN_OK) {
 #pragma omp atomic write
@@ -1005,8 +1010,8 @@ static int post_frames_thread(struct post_state *s, const char *outdir,
 
 /* Writes every frame's .vtu and, where `folder` is given, the pictures:
  * the frames in parallel (zlib's compression is most of post's time), the
- * pictures on the first thread (VTK renders on one thread) while the
- * others write. The files do not depend on the thread count. */
+ * picture frames on the first thread (VTK renders on one thread) while the
+ * others write the rest. The files do not depend on the thread count. */
 static int post_frames(struct post_state *s, const char *outdir, int count,
                        const char *folder, const char *case_name, int *written,
                        unsigned *noted)
@@ -1014,9 +1019,9 @@ static int post_frames(struct post_state *s, const char *outdir, int count,
     int next = 0, failed = 0, rc = GSN_OK;
 #pragma omp parallel
     {
-        int own = post_frames_thread(s, outdir, count,
-                                     omp_get_thread_num() == 0 ? folder : NULL,
-                                     case_name, written, noted, &next, &failed);
+        int own = post_frames_thread(s, outdir, count, folder,
+                                     omp_get_thread_num() == 0, case_name,
+                                     written, noted, &next, &failed);
         if (own != GSN_OK)
 #pragma omp critical(post_rc)
             if (rc == GSN_OK)
