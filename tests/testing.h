@@ -65,4 +65,38 @@ static inline int test_end(const char *name)
         }                                                                      \
     } while (0)
 
+/* qsort's order of doubles, ascending. */
+static inline int test_by_value(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* x[n / 2] of x[0 .. n) sorted (sorts x): the median for odd n. */
+static inline double test_median(double *x, int n)
+{
+    qsort(x, (size_t)n, sizeof *x, test_by_value);
+    return x[n / 2];
+}
+
+/* The bytes of the file at path (malloc'd, *size set), or NULL. */
+static inline unsigned char *test_file_bytes(const char *path, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    unsigned char *bytes = NULL;
+    long end = -1;
+    if (fseek(f, 0, SEEK_END) == 0 && (end = ftell(f)) >= 0 &&
+        fseek(f, 0, SEEK_SET) == 0 &&
+        (bytes = malloc((size_t)end + 1)) != NULL &&
+        fread(bytes, 1, (size_t)end, f) != (size_t)end) {
+        free(bytes);
+        bytes = NULL;
+    }
+    fclose(f);
+    *size = (size_t)end;
+    return bytes;
+}
+
 #endif

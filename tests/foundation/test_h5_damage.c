@@ -21,7 +21,6 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -170,14 +169,11 @@ int main(int argc, char **argv)
     }
 
     /* the file's bytes, and where the data of position lies */
-    FILE *in = fopen(path, "rb");
-    TEST_TRUE(in != NULL);
-    struct stat st;
-    TEST_TRUE(stat(path, &st) == 0);
-    size_t size = (size_t)st.st_size;
-    unsigned char *bytes = malloc(size);
-    TEST_TRUE(bytes && fread(bytes, 1, size, in) == size);
-    fclose(in);
+    size_t size = 0;
+    unsigned char *bytes = test_file_bytes(path, &size);
+    TEST_TRUE(bytes != NULL);
+    if (!bytes)
+        return test_end("test_h5_damage");
     haddr_t data_at = HADDR_UNDEF;
     hsize_t data_size = 0;
     {

@@ -138,24 +138,14 @@ static void test_output(void)
     TEST_INT(run_checker(folder, "plain_run"), 0);
 }
 
-/* The bytes of file `name` in folder (malloc'd, *size set), or NULL. */
-static char *file_bytes(const char *folder, const char *name, long *size)
+/* The bytes of file `name` in folder (test_file_bytes), or NULL. */
+static unsigned char *frame_bytes(const char *folder, const char *name,
+                                  size_t *size)
 {
     char path[GSN_PATH_SIZE];
     if (gsn_path_join(path, sizeof path, folder, name) != GSN_OK)
         return NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    char *bytes = NULL;
-    if (fseek(f, 0, SEEK_END) == 0 && (*size = ftell(f)) >= 0 &&
-        fseek(f, 0, SEEK_SET) == 0 && (bytes = malloc((size_t)*size + 1)) &&
-        fread(bytes, 1, (size_t)*size, f) != (size_t)*size) {
-        free(bytes);
-        bytes = NULL;
-    }
-    fclose(f);
-    return bytes;
+    return test_file_bytes(path, size);
 }
 
 /* post writes its frames in parallel (post.c post_frames): the same files
@@ -169,26 +159,26 @@ static void test_threads(void)
     folder_path(folder, sizeof folder, "threads");
     TEST_INT(gsn_folder_prepare(folder), GSN_OK);
     TEST_INT(synthetic_folder_write(folder, MANY, "box_case"), GSN_OK);
-    char *one[MANY];
-    long one_size[MANY];
+    unsigned char *one[MANY];
+    size_t one_size[MANY];
     const int threads = omp_get_max_threads();
     omp_set_num_threads(1);
     TEST_INT(gsn_post_run(folder, &NO_PICTURES), GSN_OK);
     for (int k = 0; k < MANY; ++k) {
         char name[64];
         snprintf(name, sizeof name, "vtu/frame_%04d.vtu", k);
-        one[k] = file_bytes(folder, name, &one_size[k]);
+        one[k] = frame_bytes(folder, name, &one_size[k]);
         TEST_TRUE(one[k] != NULL);
     }
     omp_set_num_threads(3);
     TEST_INT(gsn_post_run(folder, &NO_PICTURES), GSN_OK);
     for (int k = 0; k < MANY; ++k) {
         char name[64];
-        long size = -1;
+        size_t size = 0;
         snprintf(name, sizeof name, "vtu/frame_%04d.vtu", k);
-        char *three = file_bytes(folder, name, &size);
+        unsigned char *three = frame_bytes(folder, name, &size);
         TEST_TRUE(three && one[k] && size == one_size[k] &&
-                  !memcmp(three, one[k], (size_t)size));
+                  !memcmp(three, one[k], size));
         free(three);
         free(one[k]);
     }

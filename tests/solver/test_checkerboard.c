@@ -217,19 +217,6 @@ static double pressed(struct gsn_case *c, enum gsn_stabilization stab, int soil,
     return content;
 }
 
-static int by_value(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* The median of x[0 .. n), n odd (sorts x). */
-static double median(double *x, int n)
-{
-    qsort(x, (size_t)n, sizeof *x, by_value);
-    return x[n / 2];
-}
-
 /* The median over step counts (0.8 of the stable step, then one step more
  * each): three for the elastic runs; seven with the soil, where softening
  * makes the run chaotic and the content moves by 10 to 15% from one step
@@ -247,8 +234,8 @@ static double pressed_median(struct gsn_case *c, enum gsn_stabilization stab,
     double content[MOST], halves[MOST];
     for (int extra = 0; extra < counts; ++extra)
         content[extra] = pressed(c, stab, soil, extra, &halves[extra]);
-    *half = median(halves, counts);
-    return median(content, counts);
+    *half = test_median(halves, counts);
+    return test_median(content, counts);
 }
 
 int main(void)

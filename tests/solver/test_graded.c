@@ -23,12 +23,6 @@
 #include <math.h>
 #include <unistd.h>
 
-static int compare(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* Median of h_I over the particles with x < 0.5 (inside) or x > 1.0
  * (outside, beyond the 0.3 m transition). */
 static double median_spacing(const struct gsn_model *m, const double *h,
@@ -41,8 +35,7 @@ static double median_spacing(const struct gsn_model *m, const double *h,
         if (inside ? x < 0.5 : x > 1.0)
             v[count++] = h[p];
     }
-    qsort(v, (size_t)count, sizeof(double), compare);
-    double median = count ? v[count / 2] : 0.0;
+    double median = count ? test_median(v, count) : 0.0;
     free(v);
     return median;
 }
